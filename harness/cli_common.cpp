@@ -1,0 +1,51 @@
+#include "harness/cli_common.h"
+
+#include <charconv>
+
+#include "scenes/error.h"
+
+namespace sdfbench {
+
+ImageSize parse_size(const std::string& text) {
+  const size_t x = text.find('x');
+  auto parse = [&](const std::string& part) {
+    uint32_t v = 0;
+    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), v);
+    if (part.empty() || ec != std::errc() || end != part.data() + part.size())
+      throw Error("--size '" + text + "': expected WIDTHxHEIGHT, e.g. 320x180");
+    return v;
+  };
+  if (x == std::string::npos) throw Error("--size '" + text + "': expected WIDTHxHEIGHT, e.g. 320x180");
+  const ImageSize size{parse(text.substr(0, x)), parse(text.substr(x + 1))};
+  if (size.width < 1 || size.height < 1 || size.width > 16384 || size.height > 16384)
+    throw Error("--size '" + text + "': width and height must be between 1 and 16384");
+  return size;
+}
+
+void add_backend_options(CLI::App& command, BackendOptions& options) {
+  command.add_option("--device", options.device,
+                     "Vulkan device: lavapipe (default), gpu, an index or part of a name (see `sdfbench info`)");
+  command.add_option("--threads", options.threads, "CPU threads for Embree (default: as many as lavapipe uses)")
+      ->check(CLI::Range(1u, 1024u));
+  command.add_flag("--validate", options.validation,
+                   "enable VK_LAYER_KHRONOS_validation; any validation message makes the command fail");
+}
+
+RenderMode parse_mode_option(const std::string& text) {
+  const auto mode = parse_render_mode(text);
+  if (!mode || *mode == RenderMode::Whitted)
+    throw Error("--mode '" + text + "': expected primary or shadow (whitted is not implemented yet)");
+  return *mode;
+}
+
+ImageSize frame_size(const std::string& size_option, const Scene& scene) {
+  if (!size_option.empty()) return parse_size(size_option);
+  return {scene.render.width, scene.render.height};
+}
+
+std::string describe_scene(const Scene& scene) {
+  return scene.name + " (" + std::to_string(scene.instances.size()) + " instances, " +
+         std::to_string(scene.triangle_count()) + " triangles)";
+}
+
+}  // namespace sdfbench

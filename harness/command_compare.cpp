@@ -1,0 +1,115 @@
+// `sdfbench compare`: render one scene with several backends and check their images agree.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "harness/cli_common.h"
+#include "harness/commands.h"
+#include "harness/image_agreement.h"
+#include "harness/image_output.h"
+#include "scenes/error.h"
+#include "scenes/scene_source.h"
+
+namespace sdfbench {
+namespace {
+
+struct CompareArgs {
+  std::string scene, backends, reference = "embree", mode = "primary", size, out_dir;
+  AgreementThresholds thresholds;
+  BackendOptions backend_options;
+};
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ','))
+    if (!item.empty()) items.push_back(item);
+  return items;
+}
+
+FrameImages render_once(const std::string& backend, const BackendOptions& options, const Scene& scene,
+                        const FrameRequest& request, std::string& device) {
+  std::unique_ptr<Renderer> renderer = create_renderer(backend, options);
+  renderer->prepare(scene);
+  device = renderer->device_name();
+  FrameResult frame = renderer->render(request);
+  if (const uint32_t messages = renderer->validation_messages(); messages > 0)
+    throw Error(backend + ": " + std::to_string(messages) + " Vulkan validation message(s) (printed above)");
+  return std::move(frame.images);
+}
+
+void run_compare(const CompareArgs& args) {
+  const RenderMode mode = parse_mode_option(args.mode);
+  std::vector<std::string> backends = split_list(args.backends);
+  if (backends.empty()) throw Error("--backends: give at least one backend, e.g. embree,tri-aabb");
+  for (const std::string& b : backends)
+    if (std::find(backend_names().begin(), backend_names().end(), b) == backend_names().end())
+      create_renderer(b, args.backend_options);  // throws the "unknown backend" error
+  if (std::find(backend_names().begin(), backend_names().end(), args.reference) == backend_names().end())
+    create_renderer(args.reference, args.backend_options);
+  if (!args.out_dir.empty() && !std::filesystem::is_directory(args.out_dir))
+    throw Error("--out-dir '" + args.out_dir + "' is not a directory");
+
+  const Scene scene = load_scene(args.scene);
+  const ImageSize size = frame_size(args.size, scene);
+  const FrameRequest request{size.width, size.height, mode, true};
+  std::cout << "scene      " << describe_scene(scene) << "\n"
+            << "frame      " << to_string(mode) << ", " << size.width << "x" << size.height << "\n"
+            << "reference  " << args.reference << "\n\n";
+
+  std::string device;
+  const FrameImages reference = render_once(args.reference, args.backend_options, scene, request, device);
+  if (!args.out_dir.empty()) write_color_image(reference, std::filesystem::path(args.out_dir) / (args.reference + ".png"));
+
+  std::printf("%-12s %8s %8s %11s %10s %9s %9s %8s  %s\n", "backend", "hit %", "id %", "depth p99", "mean err",
+              "RMS", "PSNR dB", ">0.05 %", "result");
+  int failures = 0;
+  for (const std::string& backend : backends) {
+    if (backend == args.reference) continue;
+    const FrameImages images = render_once(backend, args.backend_options, scene, request, device);
+    if (!args.out_dir.empty()) write_color_image(images, std::filesystem::path(args.out_dir) / (backend + ".png"));
+    const Agreement g = compare_frames(images, reference);
+    const std::string failed = check_thresholds(g, args.thresholds);
+    failures += !failed.empty();
+    std::printf("%-12s %8.3f %8.3f %11.3g %10.3g %9.3g %9.2f %8.3f  %s\n", backend.c_str(), g.hit_percent, g.id_percent,
+                g.depth_p99, g.mean_error, g.rms_error, g.psnr, g.over_threshold_percent,
+                failed.empty() ? "ok" : ("FAIL: " + failed).c_str());
+    std::fflush(stdout);
+  }
+  const AgreementThresholds& t = args.thresholds;
+  std::printf("\nthresholds: hit >= %g %%, id >= %g %%, depth p99 <= %g, PSNR >= %g dB\n", t.min_hit_percent,
+              t.min_id_percent, t.max_depth_p99, t.min_psnr);
+  if (failures > 0) {
+    std::cerr << "sdfbench: " << failures << " backend(s) disagree with " << args.reference << "\n";
+    throw CommandFailed{2};
+  }
+}
+
+}  // namespace
+
+void register_compare_command(CLI::App& app) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Render a scene with several backends and compare each with a reference (exit 2 when they disagree)");
+  cmd->add_option("--scene", args->scene, "scene descriptor (.json) or generator, e.g. thesis:bunny:100")->required();
+  cmd->add_option("--backends", args->backends, "comma-separated backends, e.g. embree,tri-aabb")->required();
+  cmd->add_option("--reference", args->reference, "backend the others are compared with")->capture_default_str();
+  cmd->add_option("--mode", args->mode, "primary | shadow")->capture_default_str();
+  cmd->add_option("--size", args->size, "WIDTHxHEIGHT (default: the scene's render size)");
+  cmd->add_option("--out-dir", args->out_dir, "also write each backend's image as DIR/<backend>.png");
+  cmd->add_option("--min-hit", args->thresholds.min_hit_percent, "minimum hit-mask agreement, % of pixels")
+      ->capture_default_str()->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--min-id", args->thresholds.min_id_percent,
+                  "minimum instance-id agreement, % of pixels where either image hit an instance")
+      ->capture_default_str()->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--max-depth-error", args->thresholds.max_depth_p99,
+                  "maximum 99th percentile of relative depth error where both hit the same instance")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--min-psnr", args->thresholds.min_psnr, "minimum PSNR of the shaded image, dB")->capture_default_str();
+  add_backend_options(*cmd, args->backend_options);
+  cmd->callback([args] { run_compare(*args); });
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,62 @@
+// `sdfbench info`: what this machine offers the benchmark.
+#include <iomanip>
+#include <iostream>
+
+#include <embree3/rtcore_config.h>
+
+#include "harness/commands.h"
+#include "harness/system_info.h"
+#include "renderers/renderer.h"
+#include "renderers/vulkan/vulkan_context.h"
+#include "scenes/error.h"
+#include "scenes/mesh.h"
+
+namespace sdfbench {
+namespace {
+
+void print_info() {
+  std::cout << "sdfbench " << SDFBENCH_VERSION << " (commit " << git_commit() << ")\n\n";
+  std::cout << "CPU:     " << cpu_model() << ", " << hardware_threads() << " hardware threads; CPU backends use "
+            << cpu_thread_count(BackendOptions{}) << " threads\n";
+  std::cout << "Embree:  " << RTC_VERSION_MAJOR << "." << RTC_VERSION_MINOR << "." << RTC_VERSION_PATCH << "\n\n";
+
+  std::cout << "Vulkan devices (--device):\n";
+  try {
+    const auto devices = VulkanContext::list_devices();
+    if (devices.empty()) std::cout << "  none found (install mesa-vulkan-drivers for lavapipe)\n";
+    bool default_marked = false;
+    for (const VulkanDeviceInfo& d : devices) {
+      const bool is_default = !default_marked && d.type == "cpu";
+      default_marked = default_marked || is_default;
+      std::cout << "  " << d.index << ": " << d.name << "\n     type " << d.type << ", driver " << d.driver << " ("
+                << d.driver_info << "), Vulkan " << d.api_version << (is_default ? "  [default]" : "") << "\n";
+    }
+  } catch (const Error& e) {
+    std::cout << "  unavailable: " << e.what() << "\n";
+  }
+
+  std::cout << "\nThesis meshes (" << (data_dir() / "meshes").string() << "):\n";
+  for (const std::string& name : thesis_mesh_names()) {
+    std::cout << "  " << std::left << std::setw(8) << name;
+    try {
+      const Mesh mesh = load_obj(builtin_mesh_path(name), name);
+      std::cout << std::right << std::setw(6) << mesh.triangle_count() << " triangles " << std::setw(6)
+                << mesh.positions.size() << " vertices\n";
+    } catch (const Error& e) {
+      std::cout << "unavailable: " << e.what() << "\n";
+    }
+  }
+
+  std::cout << "\nBackends: ";
+  for (size_t i = 0; i < backend_names().size(); ++i) std::cout << (i ? ", " : "") << backend_names()[i];
+  std::cout << "\n";
+}
+
+}  // namespace
+
+void register_info_command(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("info", "List Vulkan devices, CPU, threads, backends and the thesis meshes");
+  cmd->callback(print_info);
+}
+
+}  // namespace sdfbench

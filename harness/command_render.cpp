@@ -1,0 +1,83 @@
+// `sdfbench render`: one backend, one scene; image, AOVs and timings.
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+#include "harness/cli_common.h"
+#include "harness/commands.h"
+#include "harness/image_output.h"
+#include "harness/timing_stats.h"
+#include "scenes/error.h"
+#include "scenes/scene_source.h"
+
+namespace sdfbench {
+namespace {
+
+struct RenderArgs {
+  std::string scene, backend, mode = "primary", size, out, aov;
+  unsigned frames = 5, warmup = 1;
+  BackendOptions backend_options;
+};
+
+void run_render(const RenderArgs& args) {
+  const RenderMode mode = parse_mode_option(args.mode);
+  if (!args.out.empty()) check_image_path(args.out, "--out");
+  if (!args.aov.empty()) check_image_path(args.aov, "--aov");
+  const Scene scene = load_scene(args.scene);
+  const ImageSize size = frame_size(args.size, scene);
+
+  std::unique_ptr<Renderer> renderer = create_renderer(args.backend, args.backend_options);
+  renderer->prepare(scene);
+  std::cout << "scene    " << describe_scene(scene) << "\n"
+            << "backend  " << renderer->name() << " on " << renderer->device_name() << " [" << renderer->driver_name()
+            << "]\n"
+            << "frame    " << to_string(mode) << ", " << size.width << "x" << size.height << ", " << args.warmup
+            << " warm-up + " << args.frames << " timed frames\n"
+            << std::flush;
+
+  FrameRequest request{size.width, size.height, mode, false};
+  for (unsigned i = 0; i < args.warmup; ++i) renderer->render(request);
+  std::vector<FrameResult> timed;
+  for (unsigned i = 0; i < args.frames; ++i) {
+    request.readback = i + 1 == args.frames;  // pixels of the last frame only
+    timed.push_back(renderer->render(request));
+    if (timed.back().wall_ms > 1000.0)
+      std::cerr << "  frame " << (i + 1) << "/" << args.frames << ": " << timed.back().wall_ms << " ms\n";
+  }
+  const FrameTimingSummary t = summarize_frames(timed);
+  std::printf("time     %s median %.3f ms (min %.3f, max %.3f); wall median %.3f ms\n", t.clock.c_str(), t.median_ms,
+              t.min_ms, t.max_ms, t.wall_median_ms);
+  std::printf("rate     %.2f FPS, %.2f Mrays/s (%.2f rays/pixel)\n", t.fps, t.mrays_per_s,
+              static_cast<double>(timed.back().rays) / (static_cast<double>(size.width) * size.height));
+
+  const FrameImages& images = timed.back().images;
+  if (!args.out.empty()) {
+    write_color_image(images, args.out);
+    std::cout << "wrote    " << args.out << "\n";
+  }
+  if (!args.aov.empty()) {
+    write_aov_image(images, args.aov);
+    std::cout << "wrote    " << args.aov << " (hit, depth, instance_id, primitive_id, N)\n";
+  }
+  if (const uint32_t messages = renderer->validation_messages(); messages > 0)
+    throw Error(std::to_string(messages) + " Vulkan validation message(s) (printed above)");
+}
+
+}  // namespace
+
+void register_render_command(CLI::App& app) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene with one backend; print timings, write image and AOVs");
+  cmd->add_option("--scene", args->scene, "scene descriptor (.json) or generator, e.g. thesis:bunny:100[:seed]")->required();
+  cmd->add_option("--backend", args->backend, "embree | tri-aabb")->required();
+  cmd->add_option("--mode", args->mode, "primary | shadow")->capture_default_str();
+  cmd->add_option("--size", args->size, "WIDTHxHEIGHT (default: the scene's render size)");
+  cmd->add_option("--frames", args->frames, "timed frames")->capture_default_str()->check(CLI::Range(1u, 100000u));
+  cmd->add_option("--warmup", args->warmup, "untimed warm-up frames")->capture_default_str()->check(CLI::Range(0u, 100000u));
+  cmd->add_option("--out", args->out, "write the shaded image (.png, .exr, ...)");
+  cmd->add_option("--aov", args->aov, "write the AOVs as a multi-channel .exr");
+  add_backend_options(*cmd, args->backend_options);
+  cmd->callback([args] { run_render(*args); });
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,20 @@
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace sdfbench {
+
+// Each registers its subcommand and the callback that runs it.
+void register_info_command(CLI::App& app);
+void register_render_command(CLI::App& app);
+void register_compare_command(CLI::App& app);
+
+}  // namespace sdfbench
+
+namespace sdfbench {
+
+// Thrown by a command that ran but must exit non-zero (e.g. images disagree); main returns `code`.
+struct CommandFailed {
+  int code;
+};
+
+}  // namespace sdfbench

@@ -1,0 +1,33 @@
+#pragma once
+// How closely a backend's frame matches a reference frame (DESIGN.md, "Image agreement").
+#include <string>
+
+#include "renderers/renderer.h"
+
+namespace sdfbench {
+
+struct Agreement {
+  double hit_percent = 0;        // pixels whose instance-hit mask agrees, over all pixels
+  double id_percent = 0;         // same instance id, over pixels where either hit an instance
+  double depth_p99 = 0;          // 99th percentile of |t - t_ref| / t_ref where both hit the same thing
+  double mean_error = 0;         // shaded image, OpenImageIO compare (display-encoded RGB)
+  double rms_error = 0;
+  double psnr = 0;               // dB; infinity for identical images
+  double over_threshold_percent = 0;  // pixels with a channel error > kPixelFailThreshold
+};
+
+struct AgreementThresholds {
+  double min_hit_percent = 99.5;
+  double min_id_percent = 99.0;
+  double max_depth_p99 = 1e-3;
+  double min_psnr = 30.0;
+};
+
+inline constexpr float kPixelFailThreshold = 0.05f;
+
+Agreement compare_frames(const FrameImages& test, const FrameImages& reference);
+
+// Empty when every threshold holds, else a list of what failed.
+std::string check_thresholds(const Agreement& agreement, const AgreementThresholds& thresholds);
+
+}  // namespace sdfbench

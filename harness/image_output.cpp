@@ -1,0 +1,85 @@
+#include "harness/image_output.h"
+
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "renderers/shading/gpu_types.h"
+#include "scenes/error.h"
+
+namespace sdfbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_path_for(const fs::path& path) {
+  return path.parent_path() / ("." + path.stem().string() + ".tmp" + std::to_string(::getpid()) + path.extension().string());
+}
+
+void write_atomically(const fs::path& path, const OIIO::ImageSpec& spec, const void* pixels, OIIO::TypeDesc type) {
+  const fs::path temp = temp_path_for(path);
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out) throw Error("cannot write '" + path.string() + "': unsupported image format");
+  if (!out->open(temp.string(), spec) || !out->write_image(type, pixels) || !out->close()) {
+    const std::string message = out->geterror();
+    out.reset();
+    std::error_code ec;
+    fs::remove(temp, ec);
+    throw Error("cannot write '" + path.string() + "': " + message);
+  }
+  out.reset();
+  std::error_code ec;
+  fs::rename(temp, path, ec);
+  if (ec) {
+    fs::remove(temp, ec);
+    throw Error("cannot write '" + path.string() + "': " + ec.message());
+  }
+}
+
+float id_to_float(uint32_t id) {
+  if (id == shading::NO_INSTANCE_VALUE) return -1.0f;
+  if (id == shading::FLOOR_INSTANCE_VALUE) return -2.0f;
+  return static_cast<float>(id);
+}
+
+}  // namespace
+
+void check_image_path(const fs::path& path, const char* what) {
+  if (path.empty()) throw Error(std::string(what) + ": empty file name");
+  if (!OIIO::ImageOutput::create(path.string()))
+    throw Error(std::string(what) + " '" + path.string() + "': unsupported image format (use .png, .exr, .tif, ...)");
+  const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw Error(std::string(what) + " '" + path.string() + "': directory '" + dir.string() + "' does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) throw Error(std::string(what) + " '" + path.string() + "': directory '" + dir.string() + "' is not writable");
+  if (fs::is_directory(path, ec)) throw Error(std::string(what) + " '" + path.string() + "' is a directory");
+}
+
+void write_color_image(const FrameImages& images, const fs::path& path) {
+  OIIO::ImageSpec spec(static_cast<int>(images.width), static_cast<int>(images.height), 4, OIIO::TypeDesc::FLOAT);
+  const std::string ext = path.extension().string();
+  if (ext != ".exr" && ext != ".hdr") spec.set_format(OIIO::TypeDesc::UINT8);
+  write_atomically(path, spec, images.color.data(), OIIO::TypeDesc::FLOAT);
+}
+
+void write_aov_image(const FrameImages& images, const fs::path& path) {
+  constexpr int kChannels = 7;
+  OIIO::ImageSpec spec(static_cast<int>(images.width), static_cast<int>(images.height), kChannels, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"hit", "depth", "instance_id", "primitive_id", "N.x", "N.y", "N.z"};
+  const size_t pixels = images.depth.size();
+  std::vector<float> data(pixels * kChannels);
+  for (size_t i = 0; i < pixels; ++i) {
+    float* px = &data[i * kChannels];
+    const uint32_t id = images.instance_id[i];
+    px[0] = id < shading::FLOOR_INSTANCE_VALUE ? 1.0f : 0.0f;  // an instance, not floor or sky
+    px[1] = images.depth[i];
+    px[2] = id_to_float(id);
+    px[3] = id == shading::NO_INSTANCE_VALUE ? -1.0f : static_cast<float>(images.primitive_id[i]);
+    px[4] = images.normal[i].x;
+    px[5] = images.normal[i].y;
+    px[6] = images.normal[i].z;
+  }
+  write_atomically(path, spec, data.data(), OIIO::TypeDesc::FLOAT);
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,166 @@
+#include "renderers/embree/embree_renderer.h"
+
+#include <chrono>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "harness/system_info.h"
+#include "renderers/frame_params.h"
+#include "renderers/shading/cpu_shading.h"
+#include "scenes/error.h"
+
+namespace sdfbench {
+
+EmbreeRenderer::EmbreeRenderer(const BackendOptions& options) : threads_(cpu_thread_count(options)) {
+  const std::string config = "threads=" + std::to_string(threads_);
+  device_ = rtcNewDevice(config.c_str());
+  if (!device_) throw Error("Embree: rtcNewDevice failed (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+}
+
+EmbreeRenderer::~EmbreeRenderer() {
+  release_scene();
+  rtcReleaseDevice(device_);
+}
+
+std::string EmbreeRenderer::device_name() const { return cpu_model() + " (" + std::to_string(threads_) + " threads)"; }
+
+std::string EmbreeRenderer::driver_name() const {
+  return "Embree " + std::to_string(RTC_VERSION_MAJOR) + "." + std::to_string(RTC_VERSION_MINOR) + "." +
+         std::to_string(RTC_VERSION_PATCH);
+}
+
+void EmbreeRenderer::check_device(const char* what) const {
+  const RTCError error = rtcGetDeviceError(device_);
+  if (error != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + " failed (error " + std::to_string(error) + ")");
+}
+
+void EmbreeRenderer::release_scene() {
+  if (top_) rtcReleaseScene(top_);
+  for (RTCScene s : mesh_scenes_) rtcReleaseScene(s);
+  top_ = nullptr;
+  mesh_scenes_.clear();
+}
+
+void EmbreeRenderer::prepare(const Scene& scene) {
+  release_scene();
+  scene_ = &scene;
+  for (const Mesh& mesh : scene.meshes) {
+    RTCScene mesh_scene = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(mesh_scene, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                 3 * sizeof(float), mesh.positions.size()));
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                   3 * sizeof(unsigned), mesh.triangles.size()));
+    check_device("allocating mesh buffers");
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+      for (int k = 0; k < 3; ++k) vertices[3 * i + k] = mesh.positions[i][k];
+    for (size_t i = 0; i < mesh.triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k) indices[3 * i + k] = mesh.triangles[i][k];
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometryByID(mesh_scene, geometry, 0);
+    rtcReleaseGeometry(geometry);
+    rtcCommitScene(mesh_scene);
+    mesh_scenes_.push_back(mesh_scene);
+  }
+  top_ = rtcNewScene(device_);
+  normal_to_world_.clear();
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& instance = scene.instances[i];
+    RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(geometry, mesh_scenes_[instance.mesh]);
+    const glm::mat4 m = instance.transform.object_to_world();
+    rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &m[0][0]);
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometryByID(top_, geometry, static_cast<unsigned>(i));  // instID == instance index
+    rtcReleaseGeometry(geometry);
+    normal_to_world_.push_back(glm::mat3(m));
+  }
+  rtcCommitScene(top_);
+  check_device("building the BVH");
+}
+
+bool EmbreeRenderer::closest_hit(shading::Ray ray, float tmax, shading::Hit& hit) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.dir.x, rh.ray.dir_y = ray.dir.y, rh.ray.dir_z = ray.dir.z;
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = tmax;
+  rh.ray.mask = 0xffffffffu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(top_, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  const unsigned index = rh.hit.instID[0];
+  const Instance& instance = scene_->instances[index];
+  const Mesh& mesh = scene_->meshes[instance.mesh];
+  const glm::uvec3 tri = mesh.triangles[rh.hit.primID];
+  const glm::vec2 uv(rh.hit.u, rh.hit.v);
+  const glm::vec3 n = shading::interpolate_barycentric(mesh.normals[tri.x], mesh.normals[tri.y], mesh.normals[tri.z], uv);
+  hit.t = rh.ray.tfar;
+  hit.instance = index;
+  hit.prim = rh.hit.primID;
+  hit.material = instance.material;
+  hit.normal = glm::normalize(normal_to_world_[index] * n);
+  hit.uv = uv;
+  return true;
+}
+
+bool EmbreeRenderer::any_hit(shading::Ray ray, float tmax) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r{};
+  r.org_x = ray.origin.x, r.org_y = ray.origin.y, r.org_z = ray.origin.z;
+  r.dir_x = ray.dir.x, r.dir_y = ray.dir.y, r.dir_z = ray.dir.z;
+  r.tnear = 0.0f;
+  r.tfar = tmax;
+  r.mask = 0xffffffffu;
+  rtcOccluded1(top_, &context, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar to -inf on occlusion
+}
+
+FrameResult EmbreeRenderer::render(const FrameRequest& request) {
+  if (!scene_) throw Error("internal: render before prepare");
+  const ShadingInputs inputs = make_shading_inputs(*scene_, request);
+  const size_t pixels = static_cast<size_t>(request.width) * request.height;
+  FrameResult result;
+  FrameImages& img = result.images;
+  img.width = request.width;
+  img.height = request.height;
+  img.color.resize(pixels);
+  img.depth.resize(pixels);
+  img.instance_id.resize(pixels);
+  img.primitive_id.resize(pixels);
+  img.normal.resize(pixels);
+  std::vector<uint32_t> rays(pixels);
+
+  const auto start = std::chrono::steady_clock::now();
+  tbb::task_arena arena(static_cast<int>(threads_));
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range2d<uint32_t>(0, request.height, 16, 0, request.width, 16), [&](const auto& tile) {
+      shading::CpuShading<EmbreeRenderer> program(*this, inputs.frame, inputs.materials.data(), inputs.lights.data());
+      for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
+        for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+          const size_t i = static_cast<size_t>(y) * request.width + x;
+          shading::PixelAov aov;
+          img.color[i] = program.shade_pixel(glm::uvec2(x, y), aov);
+          img.depth[i] = aov.depth;
+          img.instance_id[i] = aov.instance;
+          img.primitive_id[i] = aov.prim;
+          img.normal[i] = aov.normal;
+          rays[i] = aov.rays;
+        }
+      }
+    });
+  });
+  result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  for (uint32_t r : rays) result.rays += r;
+  if (!request.readback) img = FrameImages{};
+  return result;
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,41 @@
+#pragma once
+#include <memory>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/glm.hpp>
+
+#include "renderers/renderer.h"
+#include "renderers/shading/gpu_types.h"
+
+namespace sdfbench {
+
+// CPU reference: Embree BVH, one scene per mesh plus one instance each, TBB over tiles with
+// an explicit thread count; shading is the GLSL program compiled as C++ (cpu_shading.h).
+class EmbreeRenderer : public Renderer {
+ public:
+  explicit EmbreeRenderer(const BackendOptions& options);
+  ~EmbreeRenderer() override;
+  std::string name() const override { return "embree"; }
+  std::string device_name() const override;
+  std::string driver_name() const override;
+  void prepare(const Scene& scene) override;
+  FrameResult render(const FrameRequest& request) override;
+
+  // The backend's two queries, as the shading program calls them.
+  bool closest_hit(shading::Ray ray, float tmax, shading::Hit& hit) const;
+  bool any_hit(shading::Ray ray, float tmax) const;
+
+ private:
+  void check_device(const char* what) const;
+  void release_scene();
+
+  unsigned threads_;
+  RTCDevice device_ = nullptr;
+  RTCScene top_ = nullptr;
+  std::vector<RTCScene> mesh_scenes_;
+  const Scene* scene_ = nullptr;
+  std::vector<glm::mat3> normal_to_world_;  // per instance
+};
+
+}  // namespace sdfbench

@@ -1,0 +1,55 @@
+#include "renderers/frame_params.h"
+
+#include <cmath>
+
+namespace sdfbench {
+
+float scene_scale(const Scene& scene) {
+  Aabb bounds = scene.instance_bounds();
+  bounds.extend(scene.camera.position);
+  return std::max(1e-3f, glm::length(bounds.extent()));
+}
+
+ShadingInputs make_shading_inputs(const Scene& scene, const FrameRequest& request) {
+  using glm::vec4;
+  ShadingInputs in{};
+  const Camera& cam = scene.camera;
+  const glm::vec3 forward = glm::normalize(cam.look_at - cam.position);
+  const glm::vec3 right = glm::normalize(glm::cross(forward, cam.up));
+  const glm::vec3 up = glm::cross(right, forward);
+  const float tan_half = std::tan(glm::radians(cam.fov_y_degrees) * 0.5f);
+  const float aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
+  const float scale = scene_scale(scene);
+
+  shading::FrameParams& f = in.frame;
+  f.camera_origin = vec4(cam.position, 1.0f);
+  f.camera_forward = vec4(forward, 0.0f);
+  f.camera_right = vec4(right * tan_half * aspect, 0.0f);
+  f.camera_up = vec4(up * tan_half, 0.0f);
+  f.sky_zenith = vec4(scene.sky.zenith, 0.0f);
+  f.sky_horizon = vec4(scene.sky.horizon, 0.0f);
+  f.floor = vec4(scene.floor.height, static_cast<float>(scene.floor.material), scene.floor.enabled ? 1.0f : 0.0f, 0.0f);
+  // Offsets secondary rays off the surface; relative to the scene so it works at any unit.
+  f.tracing = vec4(1e-4f * scale, scene.ambient, 100.0f * scale, 0.0f);
+  f.image = glm::uvec4(request.width, request.height, static_cast<uint32_t>(request.mode),
+                       static_cast<uint32_t>(scene.lights.size()));
+  f.limits = glm::uvec4(scene.render.max_depth, 0u, 0u, 0u);
+
+  for (const Material& m : scene.materials) {
+    shading::GpuMaterial g{};
+    g.albedo = vec4(m.albedo, m.checker_size);
+    g.checker_albedo = vec4(m.checker_albedo, 0.0f);
+    g.optics = vec4(m.reflectance, m.transmission, m.ior, 0.0f);
+    in.materials.push_back(g);
+  }
+  for (const Light& l : scene.lights) {
+    shading::GpuLight g{};
+    g.position = l.kind == Light::Kind::Directional ? vec4(l.direction, 0.0f) : vec4(l.position, 1.0f);
+    g.color = vec4(l.color, 0.0f);
+    in.lights.push_back(g);
+  }
+  if (in.lights.empty()) in.lights.push_back(shading::GpuLight{});
+  return in;
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,22 @@
+#pragma once
+// Turns a Scene and a frame request into the buffers the shading program reads.
+#include <vector>
+
+#include "renderers/renderer.h"
+#include "renderers/shading/gpu_types.h"
+#include "scenes/scene.h"
+
+namespace sdfbench {
+
+struct ShadingInputs {
+  shading::FrameParams frame;
+  std::vector<shading::GpuMaterial> materials;
+  std::vector<shading::GpuLight> lights;  // never empty (a zero light is padded; frame counts real ones)
+};
+
+ShadingInputs make_shading_inputs(const Scene& scene, const FrameRequest& request);
+
+// Scale of the scene (instances, camera), used to size the ray offset epsilon and tmax.
+float scene_scale(const Scene& scene);
+
+}  // namespace sdfbench

@@ -1,0 +1,47 @@
+#include "renderers/renderer.h"
+
+#include <cstdlib>
+#include <thread>
+
+#include "renderers/embree/embree_renderer.h"
+#include "renderers/tri_aabb/tri_aabb_renderer.h"
+#include "scenes/error.h"
+
+namespace sdfbench {
+
+std::optional<RenderMode> parse_render_mode(const std::string& text) {
+  if (text == "primary") return RenderMode::Primary;
+  if (text == "shadow") return RenderMode::Shadow;
+  if (text == "whitted") return RenderMode::Whitted;
+  return std::nullopt;
+}
+
+std::string to_string(RenderMode mode) {
+  switch (mode) {
+    case RenderMode::Primary: return "primary";
+    case RenderMode::Shadow: return "shadow";
+    case RenderMode::Whitted: return "whitted";
+  }
+  return "?";
+}
+
+const std::vector<std::string>& backend_names() {
+  static const std::vector<std::string> names = {"embree", "tri-aabb"};
+  return names;
+}
+
+std::unique_ptr<Renderer> create_renderer(const std::string& name, const BackendOptions& options) {
+  if (name == "embree") return std::make_unique<EmbreeRenderer>(options);
+  if (name == "tri-aabb") return std::make_unique<TriAabbRenderer>(options);
+  std::string known;
+  for (const std::string& n : backend_names()) known += (known.empty() ? "" : ", ") + n;
+  throw Error("unknown backend '" + name + "' (available: " + known + ")");
+}
+
+unsigned cpu_thread_count(const BackendOptions& options) {
+  if (options.threads > 0) return options.threads;
+  if (const char* env = std::getenv("LP_NUM_THREADS"); env && std::atoi(env) > 0) return std::atoi(env);
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+}  // namespace sdfbench

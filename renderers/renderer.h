@@ -1,0 +1,70 @@
+#pragma once
+// The one interface every backend implements (DESIGN.md, "Backends"): prepare a scene once,
+// then render frames. Backends are created by name from the same options the CLI and CSV use.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scenes/scene.h"
+
+namespace sdfbench {
+
+enum class RenderMode { Primary, Shadow, Whitted };
+std::optional<RenderMode> parse_render_mode(const std::string& text);
+std::string to_string(RenderMode mode);
+
+struct BackendOptions {
+  std::string device = "lavapipe";  // Vulkan device: "lavapipe", "gpu", an index or a name substring
+  unsigned threads = 0;             // CPU worker threads (Embree); 0: as many as lavapipe uses
+  bool validation = false;          // enable VK_LAYER_KHRONOS_validation and count its messages
+};
+
+struct FrameRequest {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  RenderMode mode = RenderMode::Primary;
+  bool readback = true;  // false for timed frames whose pixels are not looked at
+};
+
+// Image and AOVs of the primary rays, row-major, top row first.
+struct FrameImages {
+  uint32_t width = 0, height = 0;
+  std::vector<glm::vec4> color;           // display-encoded RGBA in [0, 1]
+  std::vector<float> depth;               // ray parameter t of the primary hit (0: miss)
+  std::vector<uint32_t> instance_id;      // instance index, or NO_INSTANCE / FLOOR_INSTANCE
+  std::vector<uint32_t> primitive_id;     // triangle index within the mesh
+  std::vector<glm::vec3> normal;          // world shading normal facing the camera
+};
+
+struct FrameResult {
+  double device_ms = -1.0;  // GPU timestamp difference x timestampPeriod; -1 when not available
+  double wall_ms = 0.0;     // submit + wait (Vulkan) or the whole frame (CPU)
+  uint64_t rays = 0;        // every ray traced (primary + shadow + secondary)
+  FrameImages images;       // filled when FrameRequest::readback
+};
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+  virtual std::string name() const = 0;
+  virtual std::string device_name() const = 0;
+  virtual std::string driver_name() const = 0;
+  virtual void prepare(const Scene& scene) = 0;
+  virtual FrameResult render(const FrameRequest& request) = 0;
+  // Validation-layer warnings and errors seen so far (0 when validation is off or for CPU).
+  virtual uint32_t validation_messages() const { return 0; }
+};
+
+const std::vector<std::string>& backend_names();
+// Throws Error for an unknown name, listing the known ones.
+std::unique_ptr<Renderer> create_renderer(const std::string& name, const BackendOptions& options);
+
+// Worker threads for CPU backends: options.threads, else LP_NUM_THREADS (what lavapipe
+// uses), else the hardware concurrency.
+unsigned cpu_thread_count(const BackendOptions& options);
+
+}  // namespace sdfbench

@@ -1,0 +1,14 @@
+#pragma once
+// shading_types.glsl seen from C++: buffer layouts, Ray, Hit and the shared constants.
+#include <glm/glm.hpp>
+
+namespace sdfbench::shading {
+using namespace glm;
+#include "shading_types.glsl"
+}  // namespace sdfbench::shading
+
+namespace sdfbench::shading {
+// The GLSL #defines as typed C++ constants.
+inline constexpr uint32_t NO_INSTANCE_VALUE = NO_INSTANCE;
+inline constexpr uint32_t FLOOR_INSTANCE_VALUE = FLOOR_INSTANCE;
+}  // namespace sdfbench::shading

@@ -1,0 +1,82 @@
+// Types shared by the GLSL kernels and the C++ (GLM) backends. Buffer structs hold only
+// vec4/uvec4/mat4 members so that std140/std430 and C++ layouts are identical.
+#ifndef SDFBENCH_SHADING_TYPES_GLSL
+#define SDFBENCH_SHADING_TYPES_GLSL
+
+#ifdef __cplusplus
+#define OUT(T) T&
+#define INOUT(T) T&
+#define SHARED_FN inline
+#else
+#define OUT(T) out T
+#define INOUT(T) inout T
+#define SHARED_FN
+#endif
+
+#define MODE_PRIMARY 0u
+#define MODE_SHADOW 1u
+#define MODE_WHITTED 2u
+
+#define NO_INSTANCE 0xffffffffu     // the ray escaped to the sky
+#define FLOOR_INSTANCE 0xfffffffeu  // the analytic floor plane, shared by every backend
+
+struct GpuMaterial {
+  vec4 albedo;          // rgb albedo; w: checker square size in uv units (0: no checker)
+  vec4 checker_albedo;  // rgb: the checker's second colour
+  vec4 optics;          // x: reflectance, y: transmission, z: index of refraction
+};
+
+struct GpuLight {
+  vec4 position;  // w = 0: directional light, xyz = unit direction towards it; w = 1: point light
+  vec4 color;     // rgb radiance scale
+};
+
+struct FrameParams {
+  vec4 camera_origin;
+  vec4 camera_forward;  // unit viewing direction
+  vec4 camera_right;    // scaled by tan(fov_y / 2) * aspect
+  vec4 camera_up;       // scaled by tan(fov_y / 2)
+  vec4 sky_zenith;
+  vec4 sky_horizon;
+  vec4 floor;    // x: height, y: material index, z: 1 when the floor exists
+  vec4 tracing;  // x: ray offset epsilon, y: ambient, z: max ray distance
+  uvec4 image;   // x: width, y: height, z: mode (MODE_*), w: light count
+  uvec4 limits;  // x: max recursion depth
+};
+
+// Per-pixel output written by the kernels: the AOVs of the primary hit.
+struct GpuAov {
+  vec4 normal_depth;  // xyz: shading normal facing the camera, w: ray parameter t (0: miss)
+  uvec4 ids;          // x: instance id, y: primitive id, z: rays traced for this pixel
+};
+
+struct Ray {
+  vec3 origin;
+  vec3 dir;
+};
+
+// What a backend's closest_hit reports; shading derives everything else from it.
+struct Hit {
+  float t;
+  uint instance;
+  uint prim;
+  uint material;
+  vec3 normal;  // world-space unit shading normal
+  vec2 uv;
+};
+
+struct PixelAov {
+  float depth;
+  uint instance;
+  uint prim;
+  vec3 normal;
+  uint rays;  // every ray this pixel traced (for Mrays/s)
+};
+
+// Barycentric interpolation with the Möller–Trumbore / Embree convention:
+// p = (1 - u - v) * a + u * b + v * c.
+SHARED_FN vec3 interpolate_barycentric(vec3 a, vec3 b, vec3 c, vec2 uv) {
+  return (1.0f - uv.x - uv.y) * a + uv.x * b + uv.y * c;
+}
+
+#endif

@@ -1,0 +1,106 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// The thesis' "traditional" ray tracer (chapter 6, table 6.3): for every instance a slab test
+// against its world AABB, then Möller–Trumbore against every triangle of its mesh.
+
+#include "frame_bindings.glsl"
+#include "tri_aabb_types.glsl"
+
+layout(std430, binding = 8) readonly buffer InstanceBlock { TriInstance instances[]; };
+// Triangle data in texel buffers: lavapipe serves divergent texel fetches far faster than
+// divergent storage-buffer reads (DESIGN.md, measured). 3 texels per triangle.
+layout(binding = 9) uniform samplerBuffer tri_vertices;  // v0, v1, v2 (object space)
+layout(binding = 10) uniform samplerBuffer tri_normals;  // vertex normals n0, n1, n2
+
+vec3 safe_inverse(vec3 d) {
+  const float tiny = 1e-30f;
+  return vec3(1.0f) / vec3(abs(d.x) > tiny ? d.x : tiny, abs(d.y) > tiny ? d.y : tiny, abs(d.z) > tiny ? d.z : tiny);
+}
+
+// Slab test: does the ray enter the box before tmax?
+bool hits_box(vec3 origin, vec3 inv_dir, vec3 box_min, vec3 box_max, float tmax) {
+  vec3 t0 = (box_min - origin) * inv_dir;
+  vec3 t1 = (box_max - origin) * inv_dir;
+  vec3 lo = min(t0, t1);
+  vec3 hi = max(t0, t1);
+  float enter = max(max(lo.x, lo.y), max(lo.z, 0.0f));
+  float leave = min(min(hi.x, hi.y), min(hi.z, tmax));
+  return enter <= leave;
+}
+
+// Möller & Trumbore 1997, two-sided; t in (0, tmax).
+bool hits_triangle(vec3 o, vec3 d, int base, float tmax, out float t, out vec2 uv) {
+  vec3 v0 = texelFetch(tri_vertices, base).xyz;
+  vec3 e1 = texelFetch(tri_vertices, base + 1).xyz - v0;
+  vec3 e2 = texelFetch(tri_vertices, base + 2).xyz - v0;
+  vec3 p = cross(d, e2);
+  float det = dot(e1, p);
+  if (det == 0.0f) return false;
+  float inv_det = 1.0f / det;
+  vec3 s = o - v0;
+  float u = dot(s, p) * inv_det;
+  if (u < 0.0f || u > 1.0f) return false;
+  vec3 q = cross(s, e1);
+  float v = dot(d, q) * inv_det;
+  if (v < 0.0f || u + v > 1.0f) return false;
+  t = dot(e2, q) * inv_det;
+  uv = vec2(u, v);
+  return t > 0.0f && t < tmax;
+}
+
+bool closest_hit(Ray ray, float tmax, out Hit hit) {
+  vec3 inv_dir = safe_inverse(ray.dir);
+  float best_t = tmax;
+  uint best_instance = NO_INSTANCE;
+  uint best_prim = 0u;
+  vec2 best_uv = vec2(0.0f);
+  uint count = uint(instances.length());
+  for (uint i = 0u; i < count; ++i) {
+    if (!hits_box(ray.origin, inv_dir, vec3(instances[i].bounds_min), vec3(instances[i].bounds_max), best_t)) continue;
+    vec3 o = vec3(instances[i].world_to_object * vec4(ray.origin, 1.0f));
+    vec3 d = vec3(instances[i].world_to_object * vec4(ray.dir, 0.0f));
+    int first = int(instances[i].info.x);
+    uint triangles = instances[i].info.y;
+    for (uint k = 0u; k < triangles; ++k) {
+      float t;
+      vec2 uv;
+      if (hits_triangle(o, d, 3 * (first + int(k)), best_t, t, uv)) {
+        best_t = t;
+        best_instance = i;
+        best_prim = k;
+        best_uv = uv;
+      }
+    }
+  }
+  if (best_instance == NO_INSTANCE) return false;
+  int base = 3 * (int(instances[best_instance].info.x) + int(best_prim));
+  vec3 n = interpolate_barycentric(texelFetch(tri_normals, base).xyz, texelFetch(tri_normals, base + 1).xyz,
+                                   texelFetch(tri_normals, base + 2).xyz, best_uv);
+  hit.t = best_t;
+  hit.instance = best_instance;
+  hit.prim = best_prim;
+  hit.material = instances[best_instance].info.z;
+  hit.normal = normalize(mat3(instances[best_instance].object_to_world) * n);
+  hit.uv = best_uv;
+  return true;
+}
+
+bool any_hit(Ray ray, float tmax) {
+  vec3 inv_dir = safe_inverse(ray.dir);
+  uint count = uint(instances.length());
+  for (uint i = 0u; i < count; ++i) {
+    if (!hits_box(ray.origin, inv_dir, vec3(instances[i].bounds_min), vec3(instances[i].bounds_max), tmax)) continue;
+    vec3 o = vec3(instances[i].world_to_object * vec4(ray.origin, 1.0f));
+    vec3 d = vec3(instances[i].world_to_object * vec4(ray.dir, 0.0f));
+    int first = int(instances[i].info.x);
+    uint triangles = instances[i].info.y;
+    for (uint k = 0u; k < triangles; ++k) {
+      float t;
+      vec2 uv;
+      if (hits_triangle(o, d, 3 * (first + int(k)), tmax, t, uv)) return true;
+    }
+  }
+  return false;
+}
+
+#include "render_main.glsl"

@@ -1,0 +1,41 @@
+#pragma once
+// A compute pipeline with one descriptor set, built from a list of bound buffers.
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "renderers/vulkan/gpu_buffer.h"
+#include "renderers/vulkan/vulkan_context.h"
+
+namespace sdfbench {
+
+struct KernelBinding {
+  uint32_t binding;
+  VkDescriptorType type;  // UNIFORM_BUFFER, STORAGE_BUFFER or UNIFORM_TEXEL_BUFFER
+  const GpuBuffer* buffer;
+};
+
+class ComputeKernel {
+ public:
+  ComputeKernel(const VulkanContext& context, const std::vector<uint32_t>& spirv,
+                const std::vector<KernelBinding>& bindings, uint32_t push_constant_bytes);
+  ~ComputeKernel();
+  ComputeKernel(const ComputeKernel&) = delete;
+  ComputeKernel& operator=(const ComputeKernel&) = delete;
+
+  void bind(VkCommandBuffer cmd) const;
+  void push(VkCommandBuffer cmd, const void* data, uint32_t bytes) const;
+
+ private:
+  void release();
+
+  const VulkanContext& context_;
+  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+  VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+};
+
+}  // namespace sdfbench

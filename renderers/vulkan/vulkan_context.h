@@ -1,0 +1,71 @@
+#pragma once
+// Instance, device and queue for compute (DESIGN.md: lavapipe by default, --device picks another).
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace sdfbench {
+
+struct VulkanDeviceInfo {
+  uint32_t index = 0;
+  std::string name;
+  std::string type;         // cpu, discrete-gpu, integrated-gpu, virtual-gpu, other
+  std::string driver;       // driverName, e.g. "llvmpipe"
+  std::string driver_info;  // driverInfo, e.g. "Mesa 22.3.6 (LLVM 15.0.6)"
+  std::string api_version;
+};
+
+class VulkanContext {
+ public:
+  struct Options {
+    std::string device = "lavapipe";
+    bool validation = false;
+  };
+
+  explicit VulkanContext(const Options& options);
+  ~VulkanContext();
+  VulkanContext(const VulkanContext&) = delete;
+  VulkanContext& operator=(const VulkanContext&) = delete;
+
+  // Every physical device the loader sees; throws Error when Vulkan itself is unusable.
+  static std::vector<VulkanDeviceInfo> list_devices();
+
+  VkDevice device() const { return device_; }
+  VkPhysicalDevice physical_device() const { return physical_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queue_family() const { return queue_family_; }
+  VkCommandPool command_pool() const { return command_pool_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  const VulkanDeviceInfo& info() const { return info_; }
+  bool has_timestamps() const { return timestamp_valid_bits_ > 0; }
+
+  // A memory type with every `required` flag, preferring one that also has `preferred`.
+  uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags required,
+                            VkMemoryPropertyFlags preferred) const;
+
+  uint32_t validation_messages() const { return validation_messages_.load(); }
+
+ private:
+  void release();  // destroys whatever handles exist (also after a failed constructor)
+  static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                               VkDebugUtilsMessageTypeFlagsEXT type,
+                                                               const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                               void* user);
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  VkCommandPool command_pool_ = VK_NULL_HANDLE;
+  uint32_t queue_family_ = 0;
+  uint32_t timestamp_valid_bits_ = 0;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceMemoryProperties memory_{};
+  VulkanDeviceInfo info_;
+  std::atomic<uint32_t> validation_messages_{0};
+};
+
+}  // namespace sdfbench

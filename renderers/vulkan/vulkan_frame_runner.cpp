@@ -1,0 +1,151 @@
+#include "renderers/vulkan/vulkan_frame_runner.h"
+
+#include <chrono>
+
+#include "renderers/frame_params.h"
+#include "renderers/vulkan/shader_compiler.h"
+#include "renderers/vulkan/vk_error.h"
+#include "scenes/error.h"
+
+namespace sdfbench {
+
+VulkanFrameRunner::VulkanFrameRunner(VulkanContext& context, std::string shader_name)
+    : context_(context), shader_name_(std::move(shader_name)) {
+  spirv_ = compile_compute_shader(shader_name_);
+  VkDevice device = context.device();
+  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  alloc.commandPool = context.command_pool();
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  vk_check(vkAllocateCommandBuffers(device, &alloc, &cmd_), "vkAllocateCommandBuffers");
+  VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  vk_check(vkCreateFence(device, &fence_info, nullptr, &fence_), "vkCreateFence");
+  if (context.has_timestamps()) {
+    VkQueryPoolCreateInfo query_info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    query_info.queryCount = 2;
+    vk_check(vkCreateQueryPool(device, &query_info, nullptr, &queries_), "vkCreateQueryPool");
+  }
+  frame_ = GpuBuffer(context, sizeof(shading::FrameParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, GpuBuffer::Use::Upload,
+                     "frame parameters");
+}
+
+VulkanFrameRunner::~VulkanFrameRunner() {
+  VkDevice device = context_.device();
+  vkDeviceWaitIdle(device);
+  kernel_.reset();
+  if (queries_) vkDestroyQueryPool(device, queries_, nullptr);
+  if (fence_) vkDestroyFence(device, fence_, nullptr);
+  if (cmd_) vkFreeCommandBuffers(device, context_.command_pool(), 1, &cmd_);
+}
+
+void VulkanFrameRunner::set_scene(const Scene& scene, std::vector<KernelBinding> scene_bindings) {
+  scene_ = &scene;
+  scene_bindings_ = std::move(scene_bindings);
+  const ShadingInputs inputs = make_shading_inputs(scene, FrameRequest{1, 1});
+  const size_t material_bytes = inputs.materials.size() * sizeof(shading::GpuMaterial);
+  const size_t light_bytes = inputs.lights.size() * sizeof(shading::GpuLight);
+  materials_ = GpuBuffer(context_, material_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Use::Upload, "material table");
+  materials_.write(inputs.materials.data(), material_bytes);
+  lights_ = GpuBuffer(context_, light_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Use::Upload, "light table");
+  lights_.write(inputs.lights.data(), light_bytes);
+  kernel_.reset();
+  width_ = height_ = 0;
+}
+
+void VulkanFrameRunner::prepare_outputs(uint32_t width, uint32_t height) {
+  if (kernel_ && width == width_ && height == height_) return;
+  kernel_.reset();
+  const VkDeviceSize pixels = static_cast<VkDeviceSize>(width) * height;
+  color_ = GpuBuffer(context_, pixels * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Use::Readback,
+                     "output image");
+  aov_ = GpuBuffer(context_, pixels * sizeof(shading::GpuAov), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                   GpuBuffer::Use::Readback, "output AOVs");
+  std::vector<KernelBinding> bindings = {
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frame_},  {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &materials_},
+      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &lights_}, {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &color_},
+      {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &aov_}};
+  bindings.insert(bindings.end(), scene_bindings_.begin(), scene_bindings_.end());
+  kernel_ = std::make_unique<ComputeKernel>(context_, spirv_, bindings, static_cast<uint32_t>(sizeof(glm::uvec4)));
+  width_ = width;
+  height_ = height;
+}
+
+FrameResult VulkanFrameRunner::run(const FrameRequest& request) {
+  if (!scene_) throw Error("internal: render before prepare");
+  prepare_outputs(request.width, request.height);
+  const ShadingInputs inputs = make_shading_inputs(*scene_, request);
+  frame_.write(&inputs.frame, sizeof(inputs.frame));
+
+  VkDevice device = context_.device();
+  vk_check(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  vk_check(vkBeginCommandBuffer(cmd_, &begin), "vkBeginCommandBuffer");
+  if (queries_) {
+    vkCmdResetQueryPool(cmd_, queries_, 0, 2);
+    vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
+  }
+  kernel_->bind(cmd_);
+  // Tiles keep each dispatch within maxComputeWorkGroupCount and bound its duration.
+  for (uint32_t y = 0; y < request.height; y += kTileSize) {
+    for (uint32_t x = 0; x < request.width; x += kTileSize) {
+      const glm::uvec4 tile(x, y, 0u, 0u);
+      kernel_->push(cmd_, &tile, sizeof(tile));
+      const uint32_t w = std::min(kTileSize, request.width - x), h = std::min(kTileSize, request.height - y);
+      vkCmdDispatch(cmd_, (w + 7) / 8, (h + 7) / 8, 1);
+    }
+  }
+  if (queries_) vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+  // Make the shader writes visible to the host reads that follow the fence.
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
+                       nullptr, 0, nullptr);
+  vk_check(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
+
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd_;
+  const auto start = std::chrono::steady_clock::now();
+  vk_check(vkQueueSubmit(context_.queue(), 1, &submit, fence_), "vkQueueSubmit");
+  vk_check(vkWaitForFences(device, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  const auto end = std::chrono::steady_clock::now();
+  vk_check(vkResetFences(device, 1, &fence_), "vkResetFences");
+
+  FrameResult result;
+  result.wall_ms = std::chrono::duration<double, std::milli>(end - start).count();
+  if (queries_) {
+    uint64_t stamps[2] = {0, 0};
+    vk_check(vkGetQueryPoolResults(device, queries_, 0, 2, sizeof(stamps), stamps, sizeof(uint64_t),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+             "vkGetQueryPoolResults");
+    result.device_ms = static_cast<double>(stamps[1] - stamps[0]) * context_.properties().limits.timestampPeriod * 1e-6;
+  }
+
+  const size_t pixels = static_cast<size_t>(request.width) * request.height;
+  std::vector<shading::GpuAov> aov(pixels);
+  aov_.read(aov.data(), pixels * sizeof(shading::GpuAov));
+  for (const shading::GpuAov& a : aov) result.rays += a.ids.z;
+  if (request.readback) {
+    FrameImages& img = result.images;
+    img.width = request.width;
+    img.height = request.height;
+    img.color.resize(pixels);
+    color_.read(img.color.data(), pixels * sizeof(glm::vec4));
+    img.depth.resize(pixels);
+    img.instance_id.resize(pixels);
+    img.primitive_id.resize(pixels);
+    img.normal.resize(pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+      img.depth[i] = aov[i].normal_depth.w;
+      img.normal[i] = glm::vec3(aov[i].normal_depth);
+      img.instance_id[i] = aov[i].ids.x;
+      img.primitive_id[i] = aov[i].ids.y;
+    }
+  }
+  return result;
+}
+
+}  // namespace sdfbench

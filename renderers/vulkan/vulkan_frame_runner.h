@@ -1,0 +1,46 @@
+#pragma once
+// What every Vulkan backend shares: the shading inputs (frame, materials, lights), the output
+// image + AOV buffers, tiled dispatch, timestamps and read-back. A backend adds its scene
+// buffers (bindings >= 8) and names its kernel.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "renderers/renderer.h"
+#include "renderers/vulkan/compute_kernel.h"
+#include "renderers/vulkan/gpu_buffer.h"
+#include "renderers/vulkan/vulkan_context.h"
+
+namespace sdfbench {
+
+class VulkanFrameRunner {
+ public:
+  static constexpr uint32_t kTileSize = 256;  // pixels per side of one dispatch
+
+  VulkanFrameRunner(VulkanContext& context, std::string shader_name);
+  ~VulkanFrameRunner();
+  VulkanFrameRunner(const VulkanFrameRunner&) = delete;
+  VulkanFrameRunner& operator=(const VulkanFrameRunner&) = delete;
+
+  // Keeps the scene for the frame parameters and uploads materials and lights.
+  void set_scene(const Scene& scene, std::vector<KernelBinding> scene_bindings);
+  FrameResult run(const FrameRequest& request);
+
+ private:
+  void prepare_outputs(uint32_t width, uint32_t height);
+
+  VulkanContext& context_;
+  std::string shader_name_;
+  std::vector<uint32_t> spirv_;
+  const Scene* scene_ = nullptr;
+  std::vector<KernelBinding> scene_bindings_;
+  GpuBuffer frame_, materials_, lights_, color_, aov_;
+  uint32_t width_ = 0, height_ = 0;
+  std::unique_ptr<ComputeKernel> kernel_;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkQueryPool queries_ = VK_NULL_HANDLE;
+};
+
+}  // namespace sdfbench

@@ -1,0 +1,93 @@
+#pragma once
+// The scene descriptor every backend consumes (scenes/README.md documents the JSON form).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "scenes/aabb.h"
+#include "scenes/mesh.h"
+
+namespace sdfbench {
+
+struct Material {
+  std::string name;
+  glm::vec3 albedo{0.8f};
+  // Checker pattern over the hit's uv (the floor's uv is world x,z): squares of checker_size,
+  // alternating albedo and checker_albedo. checker_size 0 disables it.
+  float checker_size = 0.0f;
+  glm::vec3 checker_albedo{0.2f};
+  float reflectance = 0.0f;   // mirror weight, used by whitted mode
+  float transmission = 0.0f;  // refraction weight, used by whitted mode
+  float ior = 1.5f;
+};
+
+// Rotation, uniform scale and translation only: distances scale back exactly (SDF backends).
+struct Transform {
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  float scale = 1.0f;
+
+  glm::mat4 object_to_world() const;
+  glm::mat4 world_to_object() const;
+};
+
+struct Instance {
+  uint32_t mesh = 0;
+  uint32_t material = 0;
+  Transform transform;
+};
+
+struct Light {
+  enum class Kind { Directional, Point };
+  Kind kind = Kind::Directional;
+  glm::vec3 direction{0.0f, 1.0f, 0.0f};  // directional: towards the light, normalised
+  glm::vec3 position{0.0f};               // point
+  glm::vec3 color{1.0f};
+};
+
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 5.0f};
+  glm::vec3 look_at{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_y_degrees = 45.0f;
+};
+
+struct Sky {
+  glm::vec3 zenith{0.25f, 0.45f, 0.85f};
+  glm::vec3 horizon{0.85f, 0.9f, 1.0f};
+};
+
+struct Floor {
+  bool enabled = false;
+  float height = 0.0f;
+  uint32_t material = 0;
+};
+
+struct RenderDefaults {
+  uint32_t width = 1280;
+  uint32_t height = 720;
+  uint32_t max_depth = 4;
+};
+
+struct Scene {
+  std::string name;  // the descriptor path or generator spec it came from
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Instance> instances;
+  std::vector<Light> lights;
+  Camera camera;
+  Sky sky;
+  Floor floor;
+  float ambient = 0.15f;
+  RenderDefaults render;
+
+  // World-space bounds of every instance (the floor is unbounded and not included).
+  Aabb instance_bounds() const;
+  Aabb world_bounds(const Instance& instance) const;
+  size_t triangle_count() const;  // over all instances
+};
+
+}  // namespace sdfbench

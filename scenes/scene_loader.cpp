@@ -1,0 +1,203 @@
+#include "scenes/scene_loader.h"
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "scenes/error.h"
+#include "scenes/json_field.h"
+
+namespace sdfbench {
+namespace {
+
+constexpr uint32_t kMaxImageSide = 16384;
+
+// Looks up a name declared in a section ("meshes", "materials") and says what exists if not.
+uint32_t lookup(const JsonField& field, const std::map<std::string, uint32_t>& names, const char* section) {
+  const std::string name = field.string();
+  auto it = names.find(name);
+  if (it != names.end()) return it->second;
+  std::string known;
+  for (const auto& [n, i] : names) known += (known.empty() ? "" : ", ") + n;
+  field.fail("unknown " + std::string(section) + " '" + name + "' (declared: " + (known.empty() ? "none" : known) + ")");
+}
+
+Material parse_material(const JsonField& f, const std::string& name) {
+  f.expect_object({"albedo", "checker", "reflectance", "transmission", "ior"});
+  Material m;
+  m.name = name;
+  if (f.has("albedo")) m.albedo = f.at("albedo").color();
+  if (f.has("checker")) {
+    const JsonField c = f.at("checker");
+    c.expect_object({"size", "albedo"});
+    m.checker_size = c.at("size").positive();
+    if (c.has("albedo")) m.checker_albedo = c.at("albedo").color();
+  }
+  if (f.has("reflectance")) m.reflectance = f.at("reflectance").number_in(0.0f, 1.0f);
+  if (f.has("transmission")) m.transmission = f.at("transmission").number_in(0.0f, 1.0f);
+  if (f.has("ior")) m.ior = f.at("ior").number_in(1.0f, 4.0f);
+  if (m.reflectance + m.transmission > 1.0f) f.fail("reflectance + transmission must not exceed 1");
+  return m;
+}
+
+Transform parse_transform(const JsonField& f) {
+  Transform t;
+  if (f.has("translate")) t.translation = f.at("translate").vec3();
+  if (f.has("scale")) t.scale = f.at("scale").number_in(1e-6f, 1e6f);
+  if (f.has("rotate")) {
+    const JsonField r = f.at("rotate");
+    r.expect_object({"axis", "degrees"});
+    const glm::vec3 axis = r.at("axis").vec3();
+    if (glm::length(axis) < 1e-12f) r.at("axis").fail("rotation axis must not be zero");
+    t.rotation = glm::angleAxis(glm::radians(r.at("degrees").number()), glm::normalize(axis));
+  }
+  return t;
+}
+
+Light parse_light(const JsonField& f) {
+  Light light;
+  const std::string type = f.at("type").string();
+  if (type == "directional") {
+    f.expect_object({"type", "direction", "color"});
+    const glm::vec3 d = f.at("direction").vec3();
+    if (glm::length(d) < 1e-12f) f.at("direction").fail("direction must not be zero");
+    light.kind = Light::Kind::Directional;
+    light.direction = glm::normalize(d);
+  } else if (type == "point") {
+    f.expect_object({"type", "position", "color"});
+    light.kind = Light::Kind::Point;
+    light.position = f.at("position").vec3();
+  } else {
+    f.at("type").fail("unknown light type '" + type + "' (expected directional or point)");
+  }
+  if (f.has("color")) light.color = f.at("color").color();
+  return light;
+}
+
+Camera parse_camera(const JsonField& f) {
+  f.expect_object({"position", "look_at", "up", "fov_y"});
+  Camera c;
+  c.position = f.at("position").vec3();
+  c.look_at = f.at("look_at").vec3();
+  if (f.has("up")) c.up = f.at("up").vec3();
+  if (f.has("fov_y")) c.fov_y_degrees = f.at("fov_y").number_in(1.0f, 179.0f);
+  const glm::vec3 forward = c.look_at - c.position;
+  if (glm::length(forward) < 1e-9f) f.at("look_at").fail("camera look_at equals its position");
+  if (glm::length(glm::cross(forward, c.up)) < 1e-9f * glm::length(forward) * glm::length(c.up))
+    f.at("up").fail("camera up is zero or parallel to the viewing direction");
+  return c;
+}
+
+}  // namespace
+
+Scene parse_scene_json(const std::string& text, const std::filesystem::path& origin) {
+  const std::string file = origin.string();
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw Error(file + ": malformed JSON: " + e.what());
+  }
+  const JsonField root(doc, "", file);
+  root.expect_object({"meshes", "materials", "instances", "lights", "camera", "sky", "floor", "ambient", "render"});
+
+  Scene scene;
+  scene.name = file;
+  const std::filesystem::path base = origin.parent_path();
+
+  std::map<std::string, uint32_t> mesh_ids;
+  const JsonField meshes = root.at("meshes");
+  if (!meshes.raw().is_object() || meshes.raw().empty()) meshes.fail("expected an object of named meshes, e.g. {\"bunny\": {\"builtin\": \"bunny\"}}");
+  for (auto it = meshes.raw().begin(); it != meshes.raw().end(); ++it) {
+    const JsonField m(it.value(), "meshes." + it.key(), file);
+    if (!m.raw().is_object()) m.fail("expected an object with \"builtin\" or \"file\"");
+    m.expect_object({"builtin", "file"});
+    std::filesystem::path path;
+    if (m.has("builtin") == m.has("file")) m.fail("give exactly one of \"builtin\" and \"file\"");
+    if (m.has("builtin")) {
+      const std::string builtin = m.at("builtin").string();
+      path = builtin_mesh_path(builtin);
+      if (path.empty()) m.at("builtin").fail("unknown built-in mesh '" + builtin + "' (built in: bunny, teapot, monkey, sphere)");
+    } else {
+      path = m.at("file").string();
+      if (path.is_relative()) path = base / path;
+    }
+    try {
+      scene.meshes.push_back(load_obj(path, it.key()));
+    } catch (const Error& e) {
+      m.fail(e.what());
+    }
+    mesh_ids[it.key()] = static_cast<uint32_t>(scene.meshes.size() - 1);
+  }
+
+  std::map<std::string, uint32_t> material_ids;
+  if (root.has("materials")) {
+    const JsonField materials = root.at("materials");
+    if (!materials.raw().is_object()) materials.fail("expected an object of named materials");
+    for (auto it = materials.raw().begin(); it != materials.raw().end(); ++it) {
+      scene.materials.push_back(parse_material(JsonField(it.value(), "materials." + it.key(), file), it.key()));
+      material_ids[it.key()] = static_cast<uint32_t>(scene.materials.size() - 1);
+    }
+  }
+  if (scene.materials.empty()) {  // a scene without materials gets one grey default
+    scene.materials.push_back(Material{.name = "default"});
+    material_ids["default"] = 0;
+  }
+
+  const JsonField instances = root.at("instances");
+  instances.expect_array();
+  if (instances.size() == 0) instances.fail("a scene needs at least one instance");
+  for (size_t i = 0; i < instances.size(); ++i) {
+    const JsonField f = instances.item(i);
+    f.expect_object({"mesh", "material", "translate", "rotate", "scale"});
+    Instance instance;
+    instance.mesh = lookup(f.at("mesh"), mesh_ids, "mesh");
+    instance.material = f.has("material") ? lookup(f.at("material"), material_ids, "material") : 0;
+    instance.transform = parse_transform(f);
+    scene.instances.push_back(instance);
+  }
+
+  if (root.has("lights")) {
+    const JsonField lights = root.at("lights");
+    lights.expect_array();
+    for (size_t i = 0; i < lights.size(); ++i) scene.lights.push_back(parse_light(lights.item(i)));
+  }
+  scene.camera = parse_camera(root.at("camera"));
+  if (root.has("sky")) {
+    const JsonField sky = root.at("sky");
+    sky.expect_object({"zenith", "horizon"});
+    if (sky.has("zenith")) scene.sky.zenith = sky.at("zenith").color();
+    if (sky.has("horizon")) scene.sky.horizon = sky.at("horizon").color();
+  }
+  if (root.has("floor")) {
+    const JsonField floor = root.at("floor");
+    floor.expect_object({"height", "material"});
+    scene.floor.enabled = true;
+    if (floor.has("height")) scene.floor.height = floor.at("height").number();
+    if (floor.has("material")) scene.floor.material = lookup(floor.at("material"), material_ids, "material");
+  }
+  if (root.has("ambient")) scene.ambient = root.at("ambient").number_in(0.0f, 10.0f);
+  if (root.has("render")) {
+    const JsonField render = root.at("render");
+    render.expect_object({"width", "height", "max_depth"});
+    if (render.has("width")) scene.render.width = render.at("width").integer_in(1, kMaxImageSide);
+    if (render.has("height")) scene.render.height = render.at("height").integer_in(1, kMaxImageSide);
+    if (render.has("max_depth")) scene.render.max_depth = render.at("max_depth").integer_in(1, 16);
+  }
+  return scene;
+}
+
+Scene load_scene_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw Error(path.string() + ": scene file does not exist or is not a file");
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) throw Error(path.string() + ": cannot read scene file");
+  return parse_scene_json(text.str(), path);
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,13 @@
+#include "scenes/scene_source.h"
+
+#include "scenes/scene_loader.h"
+#include "scenes/thesis_layout.h"
+
+namespace sdfbench {
+
+Scene load_scene(const std::string& spec) {
+  if (spec.rfind("thesis:", 0) == 0) return make_thesis_scene(parse_thesis_spec(spec));
+  return load_scene_file(spec);
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,130 @@
+#include "scenes/thesis_layout.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+#include <glm/gtc/constants.hpp>
+
+#include "scenes/error.h"
+#include "scenes/random.h"
+
+namespace sdfbench {
+namespace {
+
+// Thesis chapter 6: objects "condensed in a space of 140 x 100 x 140".
+constexpr glm::vec3 kRegionMin{-70.0f, 0.0f, -70.0f};
+constexpr glm::vec3 kRegionMax{70.0f, 100.0f, 70.0f};
+constexpr float kBaseRadius = 4.0f;        // bounding-sphere radius of an object at scale factor 1
+constexpr float kMinScale = 0.75f, kMaxScale = 1.25f;
+constexpr uint32_t kMaxCount = 100000;
+constexpr int kAttemptsPerObject = 10000;
+
+template <class T>
+T parse_number(const std::string& text, const std::string& spec, const char* what) {
+  T value{};
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size())
+    throw Error("scene '" + spec + "': " + what + " '" + text + "' is not a non-negative integer");
+  return value;
+}
+
+void add_materials(Scene& scene) {
+  // Diffuse, reflective and refractive variants of six albedos; instances cycle through them.
+  const glm::vec3 palette[6] = {{0.80f, 0.30f, 0.25f}, {0.30f, 0.65f, 0.35f}, {0.30f, 0.45f, 0.85f},
+                                {0.85f, 0.75f, 0.30f}, {0.70f, 0.40f, 0.80f}, {0.85f, 0.85f, 0.85f}};
+  for (int kind = 0; kind < 3; ++kind) {
+    for (int c = 0; c < 6; ++c) {
+      Material m;
+      m.albedo = palette[c];
+      if (kind == 0) m.name = "diffuse_" + std::to_string(c);
+      if (kind == 1) m.name = "mirror_" + std::to_string(c), m.reflectance = 0.6f;
+      if (kind == 2) m.name = "glass_" + std::to_string(c), m.transmission = 0.8f, m.ior = 1.5f;
+      scene.materials.push_back(m);
+    }
+  }
+  Material floor;
+  floor.name = "floor_checker";
+  floor.albedo = glm::vec3(0.9f);
+  floor.checker_albedo = glm::vec3(0.25f);
+  floor.checker_size = 20.0f;
+  scene.materials.push_back(floor);
+}
+
+}  // namespace
+
+ThesisLayoutSpec parse_thesis_spec(const std::string& spec) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (true) {
+    const size_t colon = spec.find(':', start);
+    parts.push_back(spec.substr(start, colon - start));
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  if (parts.size() < 3 || parts.size() > 4 || parts[0] != "thesis")
+    throw Error("scene '" + spec + "': expected thesis:<mesh>:<count>[:seed], e.g. thesis:bunny:100");
+  ThesisLayoutSpec result;
+  result.mesh = parts[1];
+  if (builtin_mesh_path(result.mesh).empty())
+    throw Error("scene '" + spec + "': unknown mesh '" + result.mesh + "' (expected bunny, teapot, monkey or sphere)");
+  result.count = parse_number<uint32_t>(parts[2], spec, "count");
+  if (result.count < 1 || result.count > kMaxCount)
+    throw Error("scene '" + spec + "': count must be between 1 and " + std::to_string(kMaxCount));
+  if (parts.size() == 4) result.seed = parse_number<uint64_t>(parts[3], spec, "seed");
+  return result;
+}
+
+Scene make_thesis_scene(const ThesisLayoutSpec& spec) {
+  Scene scene;
+  scene.name = "thesis:" + spec.mesh + ":" + std::to_string(spec.count) + ":" + std::to_string(spec.seed);
+  scene.meshes.push_back(load_obj(builtin_mesh_path(spec.mesh), spec.mesh));
+  add_materials(scene);
+  const Mesh& mesh = scene.meshes[0];
+  const float mesh_radius = 0.5f * glm::length(mesh.bounds.extent());
+  const glm::vec3 mesh_center = mesh.bounds.center();
+
+  // Beyond 1000 objects the radius shrinks so the packing density stays that of 1000.
+  const float base_radius = kBaseRadius * std::min(1.0f, std::cbrt(1000.0f / static_cast<float>(spec.count)));
+  Pcg32 rng(spec.seed);
+  std::vector<glm::vec4> placed;  // xyz centre, w radius
+  for (uint32_t i = 0; i < spec.count; ++i) {
+    const float radius = base_radius * rng.uniform(kMinScale, kMaxScale);
+    const float yaw = rng.uniform(0.0f, 360.0f);
+    glm::vec3 center;
+    int attempt = 0;
+    for (;; ++attempt) {
+      if (attempt == kAttemptsPerObject)
+        throw Error("scene '" + scene.name + "': could not place object " + std::to_string(i) + " without overlap");
+      center = glm::vec3(rng.uniform(kRegionMin.x + radius, kRegionMax.x - radius),
+                         rng.uniform(kRegionMin.y + radius, kRegionMax.y - radius),
+                         rng.uniform(kRegionMin.z + radius, kRegionMax.z - radius));
+      const bool overlaps = std::any_of(placed.begin(), placed.end(), [&](const glm::vec4& o) {
+        return glm::length(glm::vec3(o) - center) < o.w + radius;
+      });
+      if (!overlaps) break;
+    }
+    placed.emplace_back(center, radius);
+    Instance instance;
+    instance.mesh = 0;
+    instance.material = (i % 3) * 6 + (i / 3) % 6;
+    instance.transform.scale = radius / mesh_radius;
+    instance.transform.rotation = glm::angleAxis(glm::radians(yaw), glm::vec3(0.0f, 1.0f, 0.0f));
+    // Put the mesh's bounding-box centre (not its origin) at the sampled centre.
+    instance.transform.translation =
+        center - instance.transform.scale * (instance.transform.rotation * mesh_center);
+    scene.instances.push_back(instance);
+  }
+
+  scene.floor = {.enabled = true, .height = 0.0f, .material = static_cast<uint32_t>(scene.materials.size() - 1)};
+  scene.camera = {.position = {0.0f, 75.0f, 150.0f}, .look_at = {0.0f, 40.0f, 0.0f}, .up = {0.0f, 1.0f, 0.0f},
+                  .fov_y_degrees = 55.0f};
+  Light sun;
+  sun.direction = glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f));
+  sun.color = glm::vec3(1.0f);
+  scene.lights.push_back(sun);
+  return scene;
+}
+
+}  // namespace sdfbench
