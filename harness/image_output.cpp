@@ -1,5 +1,6 @@
 #include "harness/image_output.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
@@ -13,7 +14,11 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path temp_path_for(const fs::path& path) {
-  return path.parent_path() / ("." + path.stem().string() + ".tmp" + std::to_string(::getpid()) + path.extension().string());
+  std::string name = ".";  // built step by step: GCC 12 warns falsely (-Wrestrict) on "." + string
+  name += path.stem().string();
+  name += ".tmp" + std::to_string(::getpid());
+  name += path.extension().string();
+  return path.parent_path() / name;
 }
 
 void write_atomically(const fs::path& path, const OIIO::ImageSpec& spec, const void* pixels, OIIO::TypeDesc type) {
@@ -51,8 +56,13 @@ void check_image_path(const fs::path& path, const char* what) {
   const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw Error(std::string(what) + " '" + path.string() + "': directory '" + dir.string() + "' does not exist");
-  if (::access(dir.c_str(), W_OK) != 0) throw Error(std::string(what) + " '" + path.string() + "': directory '" + dir.string() + "' is not writable");
   if (fs::is_directory(path, ec)) throw Error(std::string(what) + " '" + path.string() + "' is a directory");
+  // Try the temp file the real write will use (access() says yes to root even on /proc).
+  const fs::path probe = temp_path_for(path);
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  if (fd < 0) throw Error(std::string(what) + " '" + path.string() + "': directory '" + dir.string() + "' is not writable");
+  ::close(fd);
+  fs::remove(probe, ec);
 }
 
 void write_color_image(const FrameImages& images, const fs::path& path) {

@@ -1,6 +1,8 @@
 #include "harness/system_info.h"
 
 #include <fstream>
+
+#include "git_commit.h"  // generated at build time by cmake/git_commit.cmake
 #include <thread>
 
 namespace sdfbench {
@@ -20,11 +22,7 @@ std::string cpu_model() {
 unsigned hardware_threads() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 std::string git_commit() {
-#ifdef SDFBENCH_GIT_COMMIT
   return SDFBENCH_GIT_COMMIT;
-#else
-  return "unknown";
-#endif
 }
 
 }  // namespace sdfbench

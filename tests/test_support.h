@@ -1,0 +1,27 @@
+#pragma once
+#include <filesystem>
+#include <string>
+
+namespace sdfbench::test {
+
+// A fresh directory under the system temp dir, removed when the object dies.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path write(const std::string& name, const std::string& content) const;
+
+ private:
+  std::filesystem::path path_;
+};
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// Runs the sdfbench binary with `args` (a shell-quoted string).
+CommandResult run_sdfbench(const std::string& args);
+
+}  // namespace sdfbench::test
