@@ -1,5 +1,6 @@
 #pragma once
 // A JSON value together with where it came from, so every rejection names file and field.
+// ordered_json keeps objects in declaration order (mesh and material indices follow the file).
 #include <initializer_list>
 #include <string>
 
@@ -10,12 +11,12 @@ namespace sdfbench {
 
 class JsonField {
  public:
-  JsonField(const nlohmann::json& value, std::string path, std::string file)
+  JsonField(const nlohmann::ordered_json& value, std::string path, std::string file)
       : value_(value), path_(std::move(path)), file_(std::move(file)) {}
 
   [[noreturn]] void fail(const std::string& what) const;
 
-  const nlohmann::json& raw() const { return value_; }
+  const nlohmann::ordered_json& raw() const { return value_; }
   const std::string& path() const { return path_; }
   bool has(const char* key) const { return value_.is_object() && value_.contains(key); }
   JsonField at(const char* key) const;  // required member
@@ -34,7 +35,7 @@ class JsonField {
   glm::vec3 color() const;  // vec3 with every component >= 0
 
  private:
-  const nlohmann::json& value_;
+  const nlohmann::ordered_json& value_;
   std::string path_;
   std::string file_;
 };

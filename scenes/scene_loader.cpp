@@ -85,7 +85,7 @@ Camera parse_camera(const JsonField& f) {
   if (f.has("fov_y")) c.fov_y_degrees = f.at("fov_y").number_in(1.0f, 179.0f);
   const glm::vec3 forward = c.look_at - c.position;
   if (glm::length(forward) < 1e-9f) f.at("look_at").fail("camera look_at equals its position");
-  if (glm::length(glm::cross(forward, c.up)) < 1e-9f * glm::length(forward) * glm::length(c.up))
+  if (glm::length(c.up) < 1e-12f || glm::length(glm::cross(forward, c.up)) < 1e-6f * glm::length(forward) * glm::length(c.up))
     f.at("up").fail("camera up is zero or parallel to the viewing direction");
   return c;
 }
@@ -94,10 +94,10 @@ Camera parse_camera(const JsonField& f) {
 
 Scene parse_scene_json(const std::string& text, const std::filesystem::path& origin) {
   const std::string file = origin.string();
-  nlohmann::json doc;
+  nlohmann::ordered_json doc;  // declaration order: the first material is the default
   try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+    doc = nlohmann::ordered_json::parse(text);
+  } catch (const nlohmann::ordered_json::parse_error& e) {
     throw Error(file + ": malformed JSON: " + e.what());
   }
   const JsonField root(doc, "", file);

@@ -97,9 +97,10 @@ Scene make_thesis_scene(const ThesisLayoutSpec& spec) {
     for (;; ++attempt) {
       if (attempt == kAttemptsPerObject)
         throw Error("scene '" + scene.name + "': could not place object " + std::to_string(i) + " without overlap");
-      center = glm::vec3(rng.uniform(kRegionMin.x + radius, kRegionMax.x - radius),
-                         rng.uniform(kRegionMin.y + radius, kRegionMax.y - radius),
-                         rng.uniform(kRegionMin.z + radius, kRegionMax.z - radius));
+      // Drawn in x, y, z order as separate statements: argument evaluation order is unspecified.
+      center.x = rng.uniform(kRegionMin.x + radius, kRegionMax.x - radius);
+      center.y = rng.uniform(kRegionMin.y + radius, kRegionMax.y - radius);
+      center.z = rng.uniform(kRegionMin.z + radius, kRegionMax.z - radius);
       const bool overlaps = std::any_of(placed.begin(), placed.end(), [&](const glm::vec4& o) {
         return glm::length(glm::vec3(o) - center) < o.w + radius;
       });

@@ -91,9 +91,18 @@ INSTANTIATE_TEST_SUITE_P(
         BadField{"\"albedo\": [0.8, 0.1, 0.1]", "\"albedo\": [0.8, -0.1, 0.1]", "materials.red.albedo", ">= 0"},
         BadField{"\"albedo\": [0.8, 0.1, 0.1]", "\"albedo\": [0.8, 0.1]", "materials.red.albedo", "3 numbers"},
         BadField{"\"look_at\": [0, 1, 0]", "\"look_at\": [0, 2, 8]", "camera.look_at", "equals its position"},
+        BadField{"\"fov_y\": 40", "\"fov_y\": 40, \"up\": [0, 0, 0]", "camera.up", "zero or parallel"},
+        BadField{"\"fov_y\": 40", "\"fov_y\": 40, \"up\": [0, -2, -16]", "camera.up", "zero or parallel"},
         BadField{"\"direction\": [1, 2, 1]", "\"direction\": [0, 0, 0]", "lights[0].direction", "must not be zero"},
         BadField{"\"instances\": [", "\"instances\": [], \"unused\": [", "unused", "unknown field"}),
     [](const testing::TestParamInfo<BadField>& info) { return "case" + std::to_string(info.index); });
+
+TEST(SceneLoader, MaterialsKeepDeclarationOrder) {
+  // "red" is declared before "floor": index 0 (the default) is red, not the alphabetically first.
+  const Scene scene = parse_scene_json(kValidScene, "test_scene.json");
+  EXPECT_EQ(scene.materials[0].name, "red");
+  EXPECT_EQ(scene.materials[1].name, "floor");
+}
 
 TEST(SceneLoader, RejectsAnEmptyInstanceList) {
   std::string s = kValidScene;
