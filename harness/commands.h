@@ -7,6 +7,7 @@ namespace sdfbench {
 void register_info_command(CLI::App& app);
 void register_render_command(CLI::App& app);
 void register_compare_command(CLI::App& app);
+void register_check_sdf_command(CLI::App& app);
 
 }  // namespace sdfbench
 

@@ -1,0 +1,86 @@
+#pragma once
+// The per-mesh exact distance grid (DESIGN.md "The SDF structures", thesis 5.1): a uniform grid
+// around one mesh whose every cell lists the triangles that can be the closest one to some point
+// of the cell, so that inside the grid the minimum over a cell's list *is* the unsigned distance
+// to the mesh (not the thesis' heuristic approximation). Built once per mesh, shared by all of
+// the mesh's instances.
+//
+// Default resolution: 32 cells along the mesh's largest extent, plus one margin cell per side
+// (27x34x34 cells for the bunny). Measured with `check-sdf` on the bunny (tight rule, S = 2):
+//   16/extent:   4860 cells, mean list 52, 1.3 MB, build 0.2 s
+//   32/extent:  31212 cells, mean list 19, 2.8 MB, build 0.6 s
+//   64/extent: 218790 cells, mean list 8.6, 8.6 MB, build 3.6 s
+// (2 cores). Each sphere-tracing step costs one point-triangle distance per list entry, so finer
+// grids trace faster, but every doubling costs ~7x the cells and ~6x the build for a ~2.3x
+// shorter list. 32 keeps the build under a second and the grid a few MB per mesh (the same order
+// as the thesis' grids); 64 is worth trying per benchmark (cells_per_extent or cell_size, and
+// `check-sdf --cells-per-extent`), not as a default for every mesh.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "renderers/sdf/triangle_distance.h"
+#include "scenes/mesh.h"
+
+namespace sdfbench::sdf {
+
+// Which test decides that a triangle cannot be closest to any point of a cell (both exact, proofs
+// in the .cpp). Mean list lengths at 32/extent, bunny/teapot/monkey/sphere: sphere 118/154/39/25,
+// tight with S = 1: 28/35/11/6.8, S = 2: 19/22/8.3/5.5, S = 3: 17/19/7.7/5.1.
+enum class MeshGridRule {
+  tight,   // separating-axis bounds against the cell's (and its sub-boxes') corner reach (default)
+  sphere,  // dist(T, centre) <= d_c + 2h only: DESIGN.md's cheap rule, kept for comparison
+};
+
+struct MeshGridParams {
+  float cell_size = 0.0f;          // > 0: explicit cell size (mesh units); 0: derived from cells_per_extent
+  uint32_t cells_per_extent = 32;  // cells along the mesh's largest bounding-box extent
+  float margin_cells = 1.0f;       // grid box = mesh bounds grown by this many cells on every side
+  MeshGridRule rule = MeshGridRule::tight;
+  uint32_t subdivision = 2;        // tight rule: also test each cell's S^3 sub-boxes (1..8; exact for any S)
+};
+
+// DESIGN.md's exact grid: each cell lists every triangle that can be the closest one to some point of the cell.
+struct MeshDistanceGrid {
+  glm::vec3 origin{0.0f};  // min corner of the grid box
+  float cell_size = 0.0f;
+  glm::uvec3 dims{0u};     // cells per axis; cell (x, y, z) is x + dims.x * (y + dims.y * z)
+  std::vector<uint32_t> cell_begin;  // CSR: cell i lists triangles[cell_begin[i] .. cell_begin[i+1])
+  std::vector<uint32_t> cell_triangles;  // each cell's list ascending by triangle index
+  // sign: angle-weighted pseudo-normals (Baerentzen & Aanaes 2005) per face, per edge (3 per
+  // triangle, edge k of triangle t at 3t + k) and per vertex (indexed like mesh.positions).
+  // Vertices at identical positions are welded first, so split seams do not break the sign.
+  std::vector<glm::vec3> face_normals, edge_normals, vertex_normals;
+  double build_ms = 0;
+
+  size_t bytes() const;  // payload: the CSR arrays and the pseudo-normals
+  size_t cell_count() const { return static_cast<size_t>(dims.x) * dims.y * dims.z; }
+  glm::vec3 box_max() const { return origin + glm::vec3(dims) * cell_size; }
+};
+
+// Throws Error for unusable parameters (non-positive or non-finite cell size, zero cells per
+// extent, negative margin, subdivision outside 1..8) or a grid over 2^26 cells / 2^32 list entries.
+MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams& params);
+
+// Unsigned distance: inside the grid box the min over the cell's listed triangles (exact);
+// outside, the distance to the grid box (a safe lower bound). closest_triangle set when inside (else UINT32_MAX).
+float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p, uint32_t* closest_triangle = nullptr);
+
+// Signed distance (negative inside) for points inside the grid box, sign from the pseudo-normal of
+// the closest feature (correct for closed, consistently oriented meshes). Outside the grid box
+// (which contains the whole mesh) the point is outside: the positive box lower bound.
+float grid_signed_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p);
+
+// Brute force over all triangles: the independent reference.
+float brute_force_distance(const Mesh& mesh, const glm::vec3& p, uint32_t* closest_triangle = nullptr);
+
+// Edges (after welding equal positions) not shared by exactly two triangles; 0 for a closed mesh.
+size_t open_edge_count(const Mesh& mesh);
+
+// Inside by ray parity, brute force over all triangles: the majority of three fixed, skew ray
+// directions (an independent check of the pseudo-normal sign; meaningful for closed meshes).
+bool ray_parity_inside(const Mesh& mesh, const glm::vec3& p);
+
+}  // namespace sdfbench::sdf
