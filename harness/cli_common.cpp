@@ -1,6 +1,7 @@
 #include "harness/cli_common.h"
 
 #include <charconv>
+#include <map>
 
 #include "scenes/error.h"
 
@@ -29,6 +30,32 @@ void add_backend_options(CLI::App& command, BackendOptions& options) {
       ->check(CLI::Range(1u, 1024u));
   command.add_flag("--validate", options.validation,
                    "enable VK_LAYER_KHRONOS_validation; any validation message makes the command fail");
+  add_structure_options(command, options);
+}
+
+void add_structure_options(CLI::App& command, BackendOptions& options) {
+  const std::string group = "SDF structures";
+  command.add_option("--mesh-cell", options.mesh_grid.cell_size, "mesh distance grid cell size in mesh units (0: from --cells-per-extent)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(group);
+  command.add_option("--cells-per-extent", options.mesh_grid.cells_per_extent, "mesh grid cells along the mesh's largest extent")
+      ->capture_default_str()->check(CLI::Range(1u, 1024u))->group(group);
+  command.add_option("--hash-cell", options.scene_hash.hash_cell, "scene hash cell size (thesis: 10 with octree, 1 without)")
+      ->capture_default_str()->check(CLI::PositiveNumber)->group(group);
+  command.add_option("--octree-depth", options.scene_hash.octree_depth, "octree depth per hash cell (0: hash only)")
+      ->capture_default_str()->check(CLI::Range(0u, 16u))->group(group);
+  command.add_option("--octree-min-objects", options.scene_hash.octree_min_objects, "octree leaf when a node lists <= this many instances")
+      ->capture_default_str()->check(CLI::Range(1u, 1000000u))->group(group);
+  command.add_option("--octree-min-size", options.scene_hash.octree_min_size, "octree leaf when a node's edge is <= this (thesis: 1)")
+      ->capture_default_str()->check(CLI::PositiveNumber)->group(group);
+  command.add_option("--lists", options.scene_hash.lists, "instance lists: exact (default) or thesis (influence AABB)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, sdf::ListRule>{{"exact", sdf::ListRule::Exact},
+                                                                              {"thesis", sdf::ListRule::Thesis}},
+                                          CLI::ignore_case))
+      ->group(group);
+  command.add_option("--max-steps", options.tracing.max_steps, "sphere-tracing steps per ray")
+      ->capture_default_str()->check(CLI::Range(1u, 1000000u))->group(group);
+  command.add_option("--hit-epsilon", options.tracing.hit_epsilon, "sphere-tracing hit distance, relative to the scene size")
+      ->capture_default_str()->check(CLI::PositiveNumber)->group(group);
 }
 
 RenderMode parse_mode_option(const std::string& text) {

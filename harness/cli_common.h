@@ -16,8 +16,10 @@ struct ImageSize {
 // "WxH", both in [1, 16384]; throws Error otherwise.
 ImageSize parse_size(const std::string& text);
 
-// --device, --threads, --validate
+// --device, --threads, --validate and the structure options below
 void add_backend_options(CLI::App& command, BackendOptions& options);
+// --mesh-cell, --cells-per-extent, --hash-cell, --octree-*, --lists, --max-steps, --hit-epsilon
+void add_structure_options(CLI::App& command, BackendOptions& options);
 
 // "primary|shadow" option; whitted arrives with the SDF backends issue.
 RenderMode parse_mode_option(const std::string& text);

@@ -9,6 +9,9 @@
 
 #include <glm/glm.hpp>
 
+#include "renderers/sdf/mesh_distance_grid.h"
+#include "renderers/sdf/scene_hash.h"
+#include "renderers/sdf/sphere_tracer.h"
 #include "scenes/scene.h"
 
 namespace sdfbench {
@@ -21,6 +24,10 @@ struct BackendOptions {
   std::string device = "lavapipe";  // Vulkan device: "lavapipe", "gpu", an index or a name substring
   unsigned threads = 0;             // CPU worker threads (Embree); 0: as many as lavapipe uses
   bool validation = false;          // enable VK_LAYER_KHRONOS_validation and count its messages
+  // SDF backends: structure and sphere-tracing parameters (the CLI flags of the same names).
+  sdf::MeshGridParams mesh_grid;
+  sdf::SceneHashParams scene_hash;
+  sdf::SphereTraceParams tracing;
 };
 
 struct FrameRequest {

@@ -1,14 +1,7 @@
 #include "renderers/embree/embree_renderer.h"
 
-#include <chrono>
-
-#include <tbb/blocked_range2d.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include "harness/system_info.h"
-#include "renderers/frame_params.h"
-#include "renderers/shading/cpu_shading.h"
+#include "renderers/cpu_frame.h"
 #include "scenes/error.h"
 
 namespace sdfbench {
@@ -125,42 +118,7 @@ bool EmbreeRenderer::any_hit(shading::Ray ray, float tmax) const {
 
 FrameResult EmbreeRenderer::render(const FrameRequest& request) {
   if (!scene_) throw Error("internal: render before prepare");
-  const ShadingInputs inputs = make_shading_inputs(*scene_, request);
-  const size_t pixels = static_cast<size_t>(request.width) * request.height;
-  FrameResult result;
-  FrameImages& img = result.images;
-  img.width = request.width;
-  img.height = request.height;
-  img.color.resize(pixels);
-  img.depth.resize(pixels);
-  img.instance_id.resize(pixels);
-  img.primitive_id.resize(pixels);
-  img.normal.resize(pixels);
-  std::vector<uint32_t> rays(pixels);
-
-  const auto start = std::chrono::steady_clock::now();
-  tbb::task_arena arena(static_cast<int>(threads_));
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range2d<uint32_t>(0, request.height, 16, 0, request.width, 16), [&](const auto& tile) {
-      shading::CpuShading<EmbreeRenderer> program(*this, inputs.frame, inputs.materials.data(), inputs.lights.data());
-      for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
-        for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-          const size_t i = static_cast<size_t>(y) * request.width + x;
-          shading::PixelAov aov;
-          img.color[i] = program.shade_pixel(glm::uvec2(x, y), aov);
-          img.depth[i] = aov.depth;
-          img.instance_id[i] = aov.instance;
-          img.primitive_id[i] = aov.prim;
-          img.normal[i] = aov.normal;
-          rays[i] = aov.rays;
-        }
-      }
-    });
-  });
-  result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  for (uint32_t r : rays) result.rays += r;
-  if (!request.readback) img = FrameImages{};
-  return result;
+  return render_cpu_frame(*this, *scene_, request, threads_);
 }
 
 }  // namespace sdfbench

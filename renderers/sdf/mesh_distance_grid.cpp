@@ -463,7 +463,10 @@ float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::v
   glm::vec3 hi;
   if (!in_box(grid, p, hi)) {
     if (closest_triangle) *closest_triangle = UINT32_MAX;
-    return std::sqrt(point_box_distance2(p, grid.origin, hi));
+    // The distance to the mesh's own bounds: also a lower bound, and >= the margin at the
+    // grid box's surface, so a ray reaching the box is not mistaken for a hit (the distance to
+    // the grid box itself drops to 0 there). It is never smaller than the grid-box distance.
+    return std::sqrt(point_box_distance2(p, mesh.bounds.min, mesh.bounds.max));
   }
   const uint32_t cell = cell_of(grid, p);
   float best = kInf;

@@ -65,7 +65,7 @@ struct MeshDistanceGrid {
 MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams& params);
 
 // Unsigned distance: inside the grid box the min over the cell's listed triangles (exact);
-// outside, the distance to the grid box (a safe lower bound). closest_triangle set when inside (else UINT32_MAX).
+// outside, the distance to the mesh bounds (a safe lower bound, >= the distance to the grid box). closest_triangle set when inside (else UINT32_MAX).
 float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p, uint32_t* closest_triangle = nullptr);
 
 // Signed distance (negative inside) for points inside the grid box, sign from the pseudo-normal of

@@ -1,0 +1,57 @@
+#pragma once
+// The frame loop of every CPU backend: TBB over 16x16 tiles in an arena of `threads`, each
+// pixel shaded by the shared program (cpu_shading.h) over the backend's tracer.
+#include <chrono>
+#include <vector>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "renderers/frame_params.h"
+#include "renderers/renderer.h"
+#include "renderers/shading/cpu_shading.h"
+
+namespace sdfbench {
+
+template <class Tracer>
+FrameResult render_cpu_frame(const Tracer& tracer, const Scene& scene, const FrameRequest& request, unsigned threads) {
+  const ShadingInputs inputs = make_shading_inputs(scene, request);
+  const size_t pixels = static_cast<size_t>(request.width) * request.height;
+  FrameResult result;
+  FrameImages& img = result.images;
+  img.width = request.width;
+  img.height = request.height;
+  img.color.resize(pixels);
+  img.depth.resize(pixels);
+  img.instance_id.resize(pixels);
+  img.primitive_id.resize(pixels);
+  img.normal.resize(pixels);
+  std::vector<uint32_t> rays(pixels);
+
+  const auto start = std::chrono::steady_clock::now();
+  tbb::task_arena arena(static_cast<int>(threads));
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range2d<uint32_t>(0, request.height, 16, 0, request.width, 16), [&](const auto& tile) {
+      shading::CpuShading<Tracer> program(tracer, inputs.frame, inputs.materials.data(), inputs.lights.data());
+      for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
+        for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+          const size_t i = static_cast<size_t>(y) * request.width + x;
+          shading::PixelAov aov;
+          img.color[i] = program.shade_pixel(glm::uvec2(x, y), aov);
+          img.depth[i] = aov.depth;
+          img.instance_id[i] = aov.instance;
+          img.primitive_id[i] = aov.prim;
+          img.normal[i] = aov.normal;
+          rays[i] = aov.rays;
+        }
+      }
+    });
+  });
+  result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  for (uint32_t r : rays) result.rays += r;
+  if (!request.readback) img = FrameImages{};
+  return result;
+}
+
+}  // namespace sdfbench

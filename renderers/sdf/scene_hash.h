@@ -1,0 +1,78 @@
+#pragma once
+// Scene level of the thesis' structure (chapters 4.2-4.3): a uniform hash grid over the scene
+// whose cells hold octrees (a flat node array, thesis Algorithm 4.1 / Table 5.1) whose leaves
+// list the instances that can be closest to a point inside them.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "renderers/sdf/mesh_distance_grid.h"
+#include "scenes/scene.h"
+
+namespace sdfbench::sdf {
+
+enum class ListRule {
+  Exact,   // DESIGN.md: every instance that can be the closest to some point of the region
+  Thesis,  // the thesis' approximate Voronoi "influence AABB" (kept for comparison)
+};
+
+struct SceneHashParams {
+  float hash_cell = 10.0f;          // --hash-cell (thesis: 10 with octree, 1 without)
+  uint32_t octree_depth = 0;        // --octree-depth: 0 = hash only
+  uint32_t octree_min_objects = 1;  // --octree-min-objects: a node with <= this many instances is a leaf
+  float octree_min_size = 1.0f;     // --octree-min-size: a node this small (edge) is a leaf (thesis: 1)
+  ListRule lists = ListRule::Exact;
+};
+
+struct OctreeNode {
+  int32_t first_child;  // index of 8 consecutive children (octant bit 0: +x, 1: +y, 2: +z); -1: leaf
+  uint32_t list_begin;  // leaf: SceneHash::instance_lists[list_begin .. list_begin + list_count)
+  uint32_t list_count;
+  uint32_t depth;
+};
+
+struct SceneHash {
+  glm::vec3 origin{0.0f};  // min corner; cell (x, y, z) spans origin + cell_size * [x, x+1) ...
+  float cell_size = 1.0f;
+  glm::uvec3 dims{0};
+  std::vector<uint32_t> cell_root;  // per cell (x fastest, then y, then z): its root node
+  std::vector<OctreeNode> nodes;
+  std::vector<uint32_t> instance_lists;
+  SceneHashParams params;
+  double build_ms = 0.0;
+
+  size_t cell_count() const { return cell_root.size(); }
+  size_t bytes() const;
+};
+
+// One scene's SDF: a distance grid per mesh (shared by its instances) and the scene hash.
+struct SceneSdf {
+  std::vector<MeshDistanceGrid> mesh_grids;
+  SceneHash hash;
+};
+
+void validate(const SceneHashParams& params);  // throws Error for non-positive sizes etc.
+SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGrid>& grids, const SceneHashParams& params);
+SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params);
+
+// Distance from world point p to one instance's surface: the mesh grid distance taken in the
+// instance's frame and scaled back (exact inside the mesh grid box, a lower bound outside).
+float instance_distance(const SceneSdf& sdf, const Scene& scene, uint32_t instance, const glm::vec3& p,
+                        uint32_t* triangle = nullptr);
+
+struct SceneDistance {
+  float distance;
+  uint32_t instance;  // UINT32_MAX outside the hash box
+  uint32_t triangle;
+  uint32_t evaluations;  // instance distances evaluated
+};
+
+// Hash cell -> octree descent -> min over the leaf's instances. Outside the hash box: the
+// distance to the box (a lower bound).
+SceneDistance scene_distance(const SceneSdf& sdf, const Scene& scene, const glm::vec3& p);
+
+// Brute force over all instances (exact inside each mesh grid box): the test reference.
+SceneDistance brute_force_scene_distance(const SceneSdf& sdf, const Scene& scene, const glm::vec3& p);
+
+}  // namespace sdfbench::sdf

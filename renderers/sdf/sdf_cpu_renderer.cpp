@@ -1,0 +1,27 @@
+#include "renderers/sdf/sdf_cpu_renderer.h"
+
+#include "harness/system_info.h"
+#include "renderers/cpu_frame.h"
+#include "scenes/error.h"
+
+namespace sdfbench {
+
+SdfCpuRenderer::SdfCpuRenderer(const BackendOptions& options) : options_(options), threads_(cpu_thread_count(options)) {
+  sdf::validate(options.scene_hash);
+}
+
+std::string SdfCpuRenderer::device_name() const { return cpu_model() + " (" + std::to_string(threads_) + " threads)"; }
+
+void SdfCpuRenderer::prepare(const Scene& scene) {
+  scene_ = &scene;
+  tracer_.reset();
+  sdf_ = std::make_unique<sdf::SceneSdf>(sdf::build_scene_sdf(scene, options_.mesh_grid, options_.scene_hash));
+  tracer_ = std::make_unique<sdf::SphereTracer>(scene, *sdf_, options_.tracing);
+}
+
+FrameResult SdfCpuRenderer::render(const FrameRequest& request) {
+  if (!tracer_) throw Error("internal: render before prepare");
+  return render_cpu_frame(*tracer_, *scene_, request, threads_);
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,78 @@
+#include "renderers/sdf/sphere_tracer.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "renderers/frame_params.h"
+#include "renderers/sdf/triangle_distance.h"
+
+namespace sdfbench::sdf {
+namespace {
+
+// Barycentric (u, v) of a point in triangle abc with p = (1 - u - v) a + u b + v c.
+glm::vec2 barycentric(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::vec3 v0 = b - a, v1 = c - a, v2 = p - a;
+  const float d00 = glm::dot(v0, v0), d01 = glm::dot(v0, v1), d11 = glm::dot(v1, v1);
+  const float d20 = glm::dot(v2, v0), d21 = glm::dot(v2, v1);
+  const float denom = d00 * d11 - d01 * d01;
+  if (denom == 0.0f) return glm::vec2(0.0f);
+  return glm::vec2((d11 * d20 - d01 * d21) / denom, (d00 * d21 - d01 * d20) / denom);
+}
+
+}  // namespace
+
+SphereTracer::SphereTracer(const Scene& scene, const SceneSdf& sdf, const SphereTraceParams& params)
+    : scene_(scene), sdf_(sdf), params_(params), epsilon_(params.hit_epsilon * scene_scale(scene)) {}
+
+float SphereTracer::march(const shading::Ray& ray, float tmax, SceneDistance& at_hit) const {
+  const SceneHash& hash = sdf_.hash;
+  // Clip to the hash box: outside it there is nothing to hit.
+  const glm::vec3 lo = hash.origin, hi = hash.origin + glm::vec3(hash.dims) * hash.cell_size;
+  float t0 = 0.0f, t1 = tmax;
+  for (int axis = 0; axis < 3; ++axis) {
+    const float inv = 1.0f / ray.dir[axis];
+    float a = (lo[axis] - ray.origin[axis]) * inv, b = (hi[axis] - ray.origin[axis]) * inv;
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+  }
+  if (t0 > t1) return -1.0f;
+  float t = t0;
+  for (uint32_t step = 0; step < params_.max_steps && t <= t1; ++step) {
+    const SceneDistance d = scene_distance(sdf_, scene_, ray.origin + t * ray.dir);
+    // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
+    if (d.distance < epsilon_ && d.triangle != std::numeric_limits<uint32_t>::max()) {
+      at_hit = d;
+      return t;
+    }
+    t += std::max(d.distance, 0.0f);
+  }
+  return -1.0f;
+}
+
+bool SphereTracer::closest_hit(shading::Ray ray, float tmax, shading::Hit& hit) const {
+  SceneDistance d{};
+  const float t = march(ray, tmax, d);
+  if (t < 0.0f) return false;
+  const Instance& instance = scene_.instances[d.instance];
+  const Mesh& mesh = scene_.meshes[instance.mesh];
+  const glm::uvec3 tri = mesh.triangles[d.triangle];
+  const glm::vec3 p_local(instance.transform.world_to_object() * glm::vec4(ray.origin + t * ray.dir, 1.0f));
+  const glm::vec3 a = mesh.positions[tri.x], b = mesh.positions[tri.y], c = mesh.positions[tri.z];
+  const glm::vec2 uv = barycentric(closest_on_triangle(p_local, a, b, c).point, a, b, c);
+  const glm::vec3 n = shading::interpolate_barycentric(mesh.normals[tri.x], mesh.normals[tri.y], mesh.normals[tri.z], uv);
+  hit.t = t;
+  hit.instance = d.instance;
+  hit.prim = d.triangle;
+  hit.material = instance.material;
+  hit.normal = glm::normalize(glm::mat3(instance.transform.object_to_world()) * n);
+  hit.uv = uv;
+  return true;
+}
+
+bool SphereTracer::any_hit(shading::Ray ray, float tmax) const {
+  SceneDistance d{};
+  return march(ray, tmax, d) >= 0.0f;
+}
+
+}  // namespace sdfbench::sdf

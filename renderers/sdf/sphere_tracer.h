@@ -1,0 +1,34 @@
+#pragma once
+// CPU reference sphere tracer (Hart 1996) over the scene SDF, with the parameters the GPU
+// backends use; its closest_hit/any_hit plug into the shared shading program.
+#include <cstdint>
+
+#include "renderers/sdf/scene_hash.h"
+#include "renderers/shading/gpu_types.h"
+#include "scenes/scene.h"
+
+namespace sdfbench::sdf {
+
+struct SphereTraceParams {
+  uint32_t max_steps = 512;
+  float hit_epsilon = 2e-5f;  // hit when the distance drops below this x the scene scale
+};
+
+class SphereTracer {
+ public:
+  SphereTracer(const Scene& scene, const SceneSdf& sdf, const SphereTraceParams& params);
+  bool closest_hit(shading::Ray ray, float tmax, shading::Hit& hit) const;
+  bool any_hit(shading::Ray ray, float tmax) const;
+  float epsilon() const { return epsilon_; }
+
+ private:
+  // March along the ray inside the hash box; returns the hit's t or a negative value.
+  float march(const shading::Ray& ray, float tmax, SceneDistance& at_hit) const;
+
+  const Scene& scene_;
+  const SceneSdf& sdf_;
+  SphereTraceParams params_;
+  float epsilon_;
+};
+
+}  // namespace sdfbench::sdf
