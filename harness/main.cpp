@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   sdfbench::register_render_command(app);
   sdfbench::register_compare_command(app);
   sdfbench::register_check_sdf_command(app);
+  sdfbench::register_build_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
