@@ -267,12 +267,13 @@ SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, 
   SceneSdf sdf;
   for (const Mesh& mesh : scene.meshes) sdf.mesh_grids.push_back(build_mesh_distance_grid(mesh, mesh_params));
   sdf.hash = build_scene_hash(scene, sdf.mesh_grids, hash_params);
+  for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
   return sdf;
 }
 
 float instance_distance(const SceneSdf& sdf, const Scene& scene, uint32_t i, const glm::vec3& p, uint32_t* triangle) {
   const Instance& instance = scene.instances[i];
-  const glm::vec3 local(instance.transform.world_to_object() * glm::vec4(p, 1.0f));
+  const glm::vec3 local(sdf.world_to_object[i] * glm::vec4(p, 1.0f));
   return grid_distance(sdf.mesh_grids[instance.mesh], scene.meshes[instance.mesh], local, triangle) * instance.transform.scale;
 }
 

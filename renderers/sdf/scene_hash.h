@@ -50,6 +50,7 @@ struct SceneHash {
 struct SceneSdf {
   std::vector<MeshDistanceGrid> mesh_grids;
   SceneHash hash;
+  std::vector<glm::mat4> world_to_object;  // per instance (build_scene_sdf fills it): queries reuse it
 };
 
 void validate(const SceneHashParams& params);  // throws Error for non-positive sizes etc.
