@@ -31,6 +31,14 @@ void add_backend_options(CLI::App& command, BackendOptions& options) {
   command.add_flag("--validate", options.validation,
                    "enable VK_LAYER_KHRONOS_validation; any validation message makes the command fail");
   add_structure_options(command, options);
+  command.add_option("--cache", options.cache.path,
+                     "SDF structure cache file: loaded when valid for this scene and these parameters, else built and written")
+      ->group("SDF structures");
+  command.add_option("--on-bad-cache", options.cache.on_bad, "an invalid or stale --cache file: refuse (default, an error) or rebuild")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, sdf::BadCachePolicy>{{"refuse", sdf::BadCachePolicy::Refuse},
+                                                                                    {"rebuild", sdf::BadCachePolicy::Rebuild}},
+                                          CLI::ignore_case))
+      ->group("SDF structures");
 }
 
 void add_structure_options(CLI::App& command, BackendOptions& options) {
@@ -39,8 +47,10 @@ void add_structure_options(CLI::App& command, BackendOptions& options) {
       ->capture_default_str()->check(CLI::NonNegativeNumber)->group(group);
   command.add_option("--cells-per-extent", options.mesh_grid.cells_per_extent, "mesh grid cells along the mesh's largest extent")
       ->capture_default_str()->check(CLI::Range(1u, 1024u))->group(group);
-  command.add_option("--hash-cell", options.scene_hash.hash_cell, "scene hash cell size (thesis: 10 with octree, 1 without)")
-      ->capture_default_str()->check(CLI::PositiveNumber)->group(group);
+  command.add_option("--hash-cell", options.scene_hash.hash_cell,
+                     "scene hash cell size (thesis: 10 with octree, 1 without; sdf-hash defaults to 1)")
+      ->capture_default_str()->check(CLI::PositiveNumber)->group(group)
+      ->each([&options](const std::string&) { options.hash_cell_given = true; });
   command.add_option("--octree-depth", options.scene_hash.octree_depth, "octree depth per hash cell (0: hash only)")
       ->capture_default_str()->check(CLI::Range(0u, 16u))->group(group);
   command.add_option("--octree-min-objects", options.scene_hash.octree_min_objects, "octree leaf when a node lists <= this many instances")

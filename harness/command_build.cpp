@@ -1,13 +1,17 @@
 // `sdfbench build`: build a scene's SDF structures and report their cost and shape.
 #include <algorithm>
+#include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 
 #include "harness/cli_common.h"
 #include "harness/commands.h"
 #include "renderers/sdf/scene_hash.h"
+#include "renderers/sdf/sdf_cache.h"
 #include "scenes/error.h"
 #include "scenes/scene_source.h"
+#include "util/atomic_file.h"
 
 namespace sdfbench {
 namespace {
@@ -15,6 +19,7 @@ namespace {
 struct BuildArgs {
   std::string scene;
   BackendOptions options;
+  std::string cache;
 };
 
 struct ListStats {
@@ -39,6 +44,7 @@ ListStats leaf_list_stats(const sdf::SceneHash& hash) {
 
 void run_build(const BuildArgs& args) {
   sdf::validate(args.options.scene_hash);
+  if (!args.cache.empty()) check_output_path(args.cache, "--cache");
   const Scene scene = load_scene(args.scene);
   std::cout << "scene       " << describe_scene(scene) << "\n" << std::flush;
   sdf::SceneSdf sdf;
@@ -61,6 +67,13 @@ void run_build(const BuildArgs& args) {
               h.params.lists == sdf::ListRule::Exact ? "exact" : "thesis");
   std::printf("            instances per leaf min %zu mean %.2f max %zu, %.2f MB, %.0f ms\n", lists.min, lists.mean,
               lists.max, static_cast<double>(h.bytes()) / 1e6, h.build_ms);
+  if (args.cache.empty()) return;
+  for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
+  const auto start = std::chrono::steady_clock::now();
+  sdf::write_sdf_cache(args.cache, scene, sdf, args.options.mesh_grid);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  std::printf("cache       %s: %.2f MB, written in %.0f ms\n", args.cache.c_str(),
+              static_cast<double>(std::filesystem::file_size(args.cache)) / 1e6, ms);
 }
 
 }  // namespace
@@ -70,6 +83,7 @@ void register_build_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("build", "Build a scene's SDF structures (mesh grids, scene hash, octrees) and report them");
   cmd->add_option("--scene", args->scene, "scene descriptor (.json) or generator, e.g. thesis:bunny:1000")->required();
   add_structure_options(*cmd, args->options);
+  cmd->add_option("--cache", args->cache, "write the structures to this cache file (atomically), for render --cache");
   cmd->callback([args] { run_build(*args); });
 }
 

@@ -9,6 +9,7 @@ void register_render_command(CLI::App& app);
 void register_compare_command(CLI::App& app);
 void register_check_sdf_command(CLI::App& app);
 void register_build_command(CLI::App& app);
+void register_inspect_command(CLI::App& app);
 
 }  // namespace sdfbench
 

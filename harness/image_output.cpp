@@ -1,25 +1,15 @@
 #include "harness/image_output.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <OpenImageIO/imageio.h>
 
 #include "renderers/shading/gpu_types.h"
 #include "scenes/error.h"
+#include "util/atomic_file.h"
 
 namespace sdfbench {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path temp_path_for(const fs::path& path) {
-  std::string name = ".";  // built step by step: GCC 12 warns falsely (-Wrestrict) on "." + string
-  name += path.stem().string();
-  name += ".tmp" + std::to_string(::getpid());
-  name += path.extension().string();
-  return path.parent_path() / name;
-}
 
 void write_atomically(const fs::path& path, const OIIO::ImageSpec& spec, const void* pixels, OIIO::TypeDesc type) {
   const fs::path temp = temp_path_for(path);
@@ -33,12 +23,7 @@ void write_atomically(const fs::path& path, const OIIO::ImageSpec& spec, const v
     throw Error("cannot write '" + path.string() + "': " + message);
   }
   out.reset();
-  std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    throw Error("cannot write '" + path.string() + "': " + ec.message());
-  }
+  commit_temp_file(temp, path);
 }
 
 float id_to_float(uint32_t id) {
@@ -53,16 +38,7 @@ void check_image_path(const fs::path& path, const char* what) {
   if (path.empty()) throw Error(std::string(what) + ": empty file name");
   if (!OIIO::ImageOutput::create(path.string()))
     throw Error(std::string(what) + " '" + path.string() + "': unsupported image format (use .png, .exr, .tif, ...)");
-  const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw Error(std::string(what) + " '" + path.string() + "': directory '" + dir.string() + "' does not exist");
-  if (fs::is_directory(path, ec)) throw Error(std::string(what) + " '" + path.string() + "' is a directory");
-  // Try the temp file the real write will use (access() says yes to root even on /proc).
-  const fs::path probe = temp_path_for(path);
-  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
-  if (fd < 0) throw Error(std::string(what) + " '" + path.string() + "': directory '" + dir.string() + "' is not writable");
-  ::close(fd);
-  fs::remove(probe, ec);
+  check_output_path(path, what);
 }
 
 void write_color_image(const FrameImages& images, const fs::path& path) {

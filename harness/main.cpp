@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   sdfbench::register_compare_command(app);
   sdfbench::register_check_sdf_command(app);
   sdfbench::register_build_command(app);
+  sdfbench::register_inspect_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

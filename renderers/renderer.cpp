@@ -40,6 +40,15 @@ std::unique_ptr<Renderer> create_renderer(const std::string& name, const Backend
   throw Error("unknown backend '" + name + "' (available: " + known + ")");
 }
 
+sdf::SceneHashParams scene_hash_params_for(const std::string& backend, const BackendOptions& options) {
+  sdf::SceneHashParams params = options.scene_hash;
+  if (backend == "sdf-hash") {
+    params.octree_depth = 0;
+    if (!options.hash_cell_given) params.hash_cell = 1.0f;
+  }
+  return params;
+}
+
 unsigned cpu_thread_count(const BackendOptions& options) {
   if (options.threads > 0) return options.threads;
   if (const char* env = std::getenv("LP_NUM_THREADS"); env && std::atoi(env) > 0) return std::atoi(env);

@@ -11,6 +11,7 @@
 
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "renderers/sdf/scene_hash.h"
+#include "renderers/sdf/sdf_cache.h"
 #include "renderers/sdf/sphere_tracer.h"
 #include "scenes/scene.h"
 
@@ -26,9 +27,16 @@ struct BackendOptions {
   bool validation = false;          // enable VK_LAYER_KHRONOS_validation and count its messages
   // SDF backends: structure and sphere-tracing parameters (the CLI flags of the same names).
   sdf::MeshGridParams mesh_grid;
-  sdf::SceneHashParams scene_hash;
+  sdf::SceneHashParams scene_hash;  // defaults: the thesis' octree configuration (table 6.1)
+  bool hash_cell_given = false;     // --hash-cell given; otherwise sdf-hash uses the thesis' cell 1
   sdf::SphereTraceParams tracing;
+  sdf::CacheOptions cache;          // --cache FILE, --on-bad-cache
 };
+
+// The scene-hash parameters a backend builds with: sdf-hash is the thesis' hash-only
+// configuration (octree depth 0; hash cell 1 unless --hash-cell was given); every other SDF
+// consumer (sdf-octree, sdf-cpu, build) uses options.scene_hash as given.
+sdf::SceneHashParams scene_hash_params_for(const std::string& backend, const BackendOptions& options);
 
 struct FrameRequest {
   uint32_t width = 0;

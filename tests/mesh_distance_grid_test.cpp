@@ -383,6 +383,21 @@ TEST(CheckSdfCommand, PassesOnABuiltinMeshAndAUserObj) {
   EXPECT_NE(r.output.find("not closed"), std::string::npos) << r.output;
 }
 
+// The failure path: a closed tetrahedron with one face wound the wrong way. Distances stay exact,
+// but the pseudo-normal sign disagrees with ray parity, so the check must fail with exit 2.
+TEST(CheckSdfCommand, InconsistentOrientationFailsWithExitTwo) {
+  test::TempDir dir;
+  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n";
+  const auto good = dir.write("good.obj", vertices + "f 2 3 4\n");
+  const auto flipped = dir.write("flipped.obj", vertices + "f 2 4 3\n");
+  test::CommandResult r = test::run_sdfbench("check-sdf --mesh " + good.string() + " --samples 2000 --cells-per-extent 8");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  r = test::run_sdfbench("check-sdf --mesh " + flipped.string() + " --samples 2000 --cells-per-extent 8");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("FAIL: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("sign disagrees with ray parity"), std::string::npos) << r.output;
+}
+
 TEST(CheckSdfCommand, BadArgumentsAreClearErrors) {
   const std::pair<std::string, std::string> cases[] = {
       {"--mesh cube", "neither a built-in mesh"},

@@ -19,7 +19,7 @@ enum class ListRule {
 
 struct SceneHashParams {
   float hash_cell = 10.0f;          // --hash-cell (thesis: 10 with octree, 1 without)
-  uint32_t octree_depth = 0;        // --octree-depth: 0 = hash only
+  uint32_t octree_depth = 4;        // --octree-depth: 0 = hash only (4: cell 10 down to the thesis' min size 1)
   uint32_t octree_min_objects = 1;  // --octree-min-objects: a node with <= this many instances is a leaf
   float octree_min_size = 1.0f;     // --octree-min-size: a node this small (edge) is a leaf (thesis: 1)
   ListRule lists = ListRule::Exact;

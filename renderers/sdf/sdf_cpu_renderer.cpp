@@ -1,5 +1,7 @@
 #include "renderers/sdf/sdf_cpu_renderer.h"
 
+#include <iostream>
+
 #include "harness/system_info.h"
 #include "renderers/cpu_frame.h"
 #include "scenes/error.h"
@@ -15,7 +17,8 @@ std::string SdfCpuRenderer::device_name() const { return cpu_model() + " (" + st
 void SdfCpuRenderer::prepare(const Scene& scene) {
   scene_ = &scene;
   tracer_.reset();
-  sdf_ = std::make_unique<sdf::SceneSdf>(sdf::build_scene_sdf(scene, options_.mesh_grid, options_.scene_hash));
+  sdf_ = std::make_unique<sdf::SceneSdf>(sdf::obtain_scene_sdf(scene, options_.mesh_grid,
+                                                               scene_hash_params_for(name(), options_), options_.cache, std::cerr));
   tracer_ = std::make_unique<sdf::SphereTracer>(scene, *sdf_, options_.tracing);
 }
 

@@ -1,0 +1,151 @@
+#include "renderers/sdf/sdf_cache.h"
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+#include "renderers/sdf/sdf_cache_format.h"
+#include "scenes/error.h"
+#include "util/atomic_file.h"
+
+namespace sdfbench::sdf {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Bump when the builders change what they produce for the same input: old caches turn stale.
+constexpr char kBuilderVersion[] = "sdfbench-sdf-builder-1";
+
+template <class T>
+uint64_t hash_items(uint64_t h, const std::vector<T>& items) {
+  const uint64_t n = items.size();
+  h = fnv1a64(std::as_bytes(std::span(&n, 1)), h);
+  return fnv1a64(std::as_bytes(std::span(items)), h);
+}
+
+template <class T>
+uint64_t hash_value(uint64_t h, const T& value) {
+  return fnv1a64(std::as_bytes(std::span(&value, 1)), h);
+}
+
+std::vector<std::byte> read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot open SDF cache '" + path.string() + "'");
+  std::error_code ec;
+  const uintmax_t size = fs::file_size(path, ec);
+  if (ec) throw Error("cannot read SDF cache '" + path.string() + "': " + ec.message());
+  std::vector<std::byte> bytes(size);
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
+    throw Error("cannot read SDF cache '" + path.string() + "'");
+  return bytes;
+}
+
+std::string describe(const MeshGridParams& m) {
+  std::ostringstream s;
+  s << "--mesh-cell " << m.cell_size << " --cells-per-extent " << m.cells_per_extent << " margin " << m.margin_cells
+    << " rule " << (m.rule == MeshGridRule::tight ? "tight" : "sphere") << " subdivision " << m.subdivision;
+  return s.str();
+}
+
+std::string describe(const SceneHashParams& p) {
+  std::ostringstream s;
+  s << "--hash-cell " << p.hash_cell << " --octree-depth " << p.octree_depth << " --octree-min-objects "
+    << p.octree_min_objects << " --octree-min-size " << p.octree_min_size << " --lists "
+    << (p.lists == ListRule::Exact ? "exact" : "thesis");
+  return s.str();
+}
+
+bool same(const MeshGridParams& a, const MeshGridParams& b) {
+  return a.cell_size == b.cell_size && a.cells_per_extent == b.cells_per_extent && a.margin_cells == b.margin_cells &&
+         a.rule == b.rule && a.subdivision == b.subdivision;
+}
+
+bool same(const SceneHashParams& a, const SceneHashParams& b) {
+  return a.hash_cell == b.hash_cell && a.octree_depth == b.octree_depth && a.octree_min_objects == b.octree_min_objects &&
+         a.octree_min_size == b.octree_min_size && a.lists == b.lists;
+}
+
+}  // namespace
+
+uint64_t scene_geometry_hash(const Scene& scene) {
+  uint64_t h = fnv1a64(std::as_bytes(std::span(kBuilderVersion)));
+  h = hash_value(h, static_cast<uint64_t>(scene.meshes.size()));
+  for (const Mesh& mesh : scene.meshes) {
+    h = hash_items(h, mesh.positions);
+    h = hash_items(h, mesh.triangles);
+  }
+  h = hash_value(h, static_cast<uint64_t>(scene.instances.size()));
+  for (const Instance& instance : scene.instances) {
+    h = hash_value(h, instance.mesh);
+    h = hash_value(h, instance.transform.translation);
+    h = hash_value(h, instance.transform.rotation);
+    h = hash_value(h, instance.transform.scale);
+  }
+  return h;
+}
+
+void write_sdf_cache(const fs::path& path, const Scene& scene, const SceneSdf& sdf, const MeshGridParams& mesh_params) {
+  SdfCacheContents c;
+  c.scene_hash = scene_geometry_hash(scene);
+  c.instance_count = static_cast<uint32_t>(scene.instances.size());
+  c.mesh_params = mesh_params;
+  c.hash_params = sdf.hash.params;
+  c.mesh_grids = sdf.mesh_grids;
+  for (const Mesh& mesh : scene.meshes) {
+    c.mesh_triangles.push_back(static_cast<uint32_t>(mesh.triangles.size()));
+    c.mesh_vertices.push_back(static_cast<uint32_t>(mesh.positions.size()));
+  }
+  c.hash = sdf.hash;
+  write_file_atomically(path, encode_sdf_cache(c));
+}
+
+SceneSdf load_sdf_cache(const fs::path& path, const Scene& scene, const MeshGridParams& mesh_params,
+                        const SceneHashParams& hash_params) {
+  const std::vector<std::byte> bytes = read_file(path);
+  SdfCacheContents c = decode_sdf_cache(bytes, path.string());
+  const std::string stale = "SDF cache '" + path.string() + "' is stale: ";
+  if (c.scene_hash != scene_geometry_hash(scene))
+    throw Error(stale + "it was built for different geometry (a different scene, meshes, transforms or sdfbench builder)");
+  if (!same(c.mesh_params, mesh_params))
+    throw Error(stale + "built with mesh grid " + describe(c.mesh_params) + ", requested " + describe(mesh_params));
+  if (!same(c.hash_params, hash_params))
+    throw Error(stale + "built with " + describe(c.hash_params) + ", requested " + describe(hash_params));
+  // Implied by the geometry hash, but the renderers index meshes with these: check explicitly.
+  bool counts_match = c.mesh_grids.size() == scene.meshes.size() && c.instance_count == scene.instances.size();
+  for (size_t m = 0; counts_match && m < scene.meshes.size(); ++m)
+    counts_match = c.mesh_triangles[m] == scene.meshes[m].triangles.size() && c.mesh_vertices[m] == scene.meshes[m].positions.size();
+  if (!counts_match) throw Error(stale + "its mesh or instance counts differ from the scene's");
+  SceneSdf sdf;
+  sdf.mesh_grids = std::move(c.mesh_grids);
+  sdf.hash = std::move(c.hash);
+  for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
+  return sdf;
+}
+
+SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
+                          const CacheOptions& cache, std::ostream& log) {
+  if (cache.path.empty()) return build_scene_sdf(scene, mesh_params, hash_params);
+  const fs::path path = cache.path;
+  std::error_code ec;
+  if (fs::exists(path, ec)) {
+    try {
+      const auto start = std::chrono::steady_clock::now();
+      SceneSdf sdf = load_sdf_cache(path, scene, mesh_params, hash_params);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      log << "SDF cache: loaded '" << path.string() << "' in " << static_cast<long>(ms) << " ms (build skipped)\n";
+      return sdf;
+    } catch (const Error& e) {
+      if (cache.on_bad == BadCachePolicy::Refuse)
+        throw Error(std::string(e.what()) + "; pass --on-bad-cache rebuild to replace it");
+      log << "SDF cache: " << e.what() << "; rebuilding it\n";
+    }
+  }
+  SceneSdf sdf = build_scene_sdf(scene, mesh_params, hash_params);
+  write_sdf_cache(path, scene, sdf, mesh_params);
+  log << "SDF cache: built and wrote '" << path.string() << "'\n";
+  return sdf;
+}
+
+}  // namespace sdfbench::sdf

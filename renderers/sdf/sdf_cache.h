@@ -1,0 +1,47 @@
+#pragma once
+// The on-disk cache of a scene's SDF structures (mesh distance grids + scene hash/octrees), so
+// that renders and benchmarks reuse a build. The file format and its validation live in
+// sdf_cache_format.h; this file ties a cache to a scene: its content hash, the build parameters,
+// and the policy for a cache that does not match.
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+
+#include "renderers/sdf/scene_hash.h"
+#include "scenes/scene.h"
+
+namespace sdfbench::sdf {
+
+// What a scene's structures depend on: every mesh's positions and triangles, and every
+// instance's mesh and transform (plus the builder version). Materials, lights, camera, sky and
+// floor do not change the structures, so they do not invalidate a cache.
+uint64_t scene_geometry_hash(const Scene& scene);
+
+// Writes atomically (temporary file + rename): a reader never sees a half-written cache.
+void write_sdf_cache(const std::filesystem::path& path, const Scene& scene, const SceneSdf& sdf,
+                     const MeshGridParams& mesh_params);
+
+// Reads and validates a cache completely, then checks it belongs to this scene and these
+// parameters. Throws Error with a clear message for a missing, truncated, corrupt, hostile or
+// stale file; never returns structures that were not validated.
+SceneSdf load_sdf_cache(const std::filesystem::path& path, const Scene& scene, const MeshGridParams& mesh_params,
+                        const SceneHashParams& hash_params);
+
+enum class BadCachePolicy {
+  Refuse,   // an invalid or stale cache is an error (default: never silently pay a rebuild)
+  Rebuild,  // rebuild and overwrite it
+};
+
+struct CacheOptions {
+  std::string path;  // empty: no cache, always build in memory
+  BadCachePolicy on_bad = BadCachePolicy::Refuse;
+};
+
+// The one entry point for backends: no path -> build; a missing file -> build and write it; a
+// valid matching file -> load it (skipping the build); an invalid or stale file -> the policy.
+// Says on `log` which of these happened.
+SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
+                          const CacheOptions& cache, std::ostream& log);
+
+}  // namespace sdfbench::sdf

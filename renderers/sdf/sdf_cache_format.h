@@ -1,0 +1,62 @@
+#pragma once
+// The SDF cache file format, version 1 (little-endian, every section 8-byte aligned):
+//
+//   header          magic "SDFBCACH", format version, header size, file size, scene geometry
+//                   hash, mesh/instance/section counts, every build parameter
+//   section table   per section: kind, owner mesh, element size, offset, element count
+//   sections        per mesh: grid header (origin, cell size, dims, triangle/vertex counts,
+//                   build ms), cell_begin, cell_triangles, face/edge/vertex pseudo-normals;
+//                   scene: hash header, cell_root, octree nodes, instance lists
+//   checksum        FNV-1a 64 of every byte before it
+//
+// decode_sdf_cache trusts nothing: sizes, offsets, overlaps, counts, every index and every
+// float are checked before a structure is returned, so a renderer can walk the result (and
+// upload it to a GPU) without further checks. It needs no scene: `sdfbench inspect` uses it
+// alone; load_sdf_cache (sdf_cache.h) adds the checks against a scene.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "renderers/sdf/mesh_distance_grid.h"
+#include "renderers/sdf/scene_hash.h"
+
+namespace sdfbench::sdf {
+
+inline constexpr uint32_t kSdfCacheVersion = 1;
+
+struct SdfCacheSection {
+  std::string name;  // e.g. "mesh 0 cell_triangles"
+  uint64_t offset = 0, count = 0, bytes = 0;
+};
+
+// Everything a cache holds. Mesh triangle and vertex counts make the grids checkable without
+// the scene (triangle indices, pseudo-normal counts).
+struct SdfCacheContents {
+  uint32_t version = kSdfCacheVersion;
+  uint64_t scene_hash = 0;
+  uint32_t instance_count = 0;
+  MeshGridParams mesh_params;
+  SceneHashParams hash_params;
+  std::vector<MeshDistanceGrid> mesh_grids;
+  std::vector<uint32_t> mesh_triangles, mesh_vertices;  // per mesh
+  SceneHash hash;
+  std::vector<SdfCacheSection> sections;  // filled by decode (for inspect)
+  uint64_t file_bytes = 0;                // filled by decode
+};
+
+std::vector<std::byte> encode_sdf_cache(const SdfCacheContents& contents);
+
+// Throws Error naming what is wrong (truncated, checksum mismatch, section out of bounds,
+// index out of range, ...). `source` names the file in messages.
+SdfCacheContents decode_sdf_cache(std::span<const std::byte> bytes, const std::string& source);
+
+// FNV-1a 64: any single changed byte changes it (each step is a bijection of the state).
+uint64_t fnv1a64(std::span<const std::byte> bytes, uint64_t hash = 0xcbf29ce484222325ull);
+
+// Recomputes the trailing checksum in place (the fuzz target uses it to get past the checksum
+// and exercise the structural checks).
+void reseal_sdf_cache(std::span<std::byte> bytes);
+
+}  // namespace sdfbench::sdf
