@@ -10,6 +10,9 @@ void register_compare_command(CLI::App& app);
 void register_check_sdf_command(CLI::App& app);
 void register_build_command(CLI::App& app);
 void register_inspect_command(CLI::App& app);
+void register_table_command(CLI::App& app);
+void register_sweep_command(CLI::App& app);
+void register_merge_command(CLI::App& app);
 
 }  // namespace sdfbench
 

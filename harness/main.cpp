@@ -17,6 +17,9 @@ int main(int argc, char** argv) {
   sdfbench::register_check_sdf_command(app);
   sdfbench::register_build_command(app);
   sdfbench::register_inspect_command(app);
+  sdfbench::register_table_command(app);
+  sdfbench::register_sweep_command(app);
+  sdfbench::register_merge_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

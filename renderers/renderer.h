@@ -62,6 +62,13 @@ struct FrameResult {
   FrameImages images;       // filled when FrameRequest::readback
 };
 
+// What an SDF backend's structures cost (mesh grids + scene hash): build time (as built, also
+// when they came from the cache) and payload bytes.
+struct StructureStats {
+  double build_ms = 0;
+  uint64_t bytes = 0;
+};
+
 class Renderer {
  public:
   virtual ~Renderer() = default;
@@ -72,6 +79,7 @@ class Renderer {
   virtual FrameResult render(const FrameRequest& request) = 0;
   // Validation-layer warnings and errors seen so far (0 when validation is off or for CPU).
   virtual uint32_t validation_messages() const { return 0; }
+  virtual std::optional<StructureStats> structure_stats() const { return std::nullopt; }
 };
 
 const std::vector<std::string>& backend_names();

@@ -262,6 +262,18 @@ SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGri
   return hash;
 }
 
+double build_ms(const SceneSdf& sdf) {
+  double ms = sdf.hash.build_ms;
+  for (const MeshDistanceGrid& g : sdf.mesh_grids) ms += g.build_ms;
+  return ms;
+}
+
+size_t bytes(const SceneSdf& sdf) {
+  size_t total = sdf.hash.bytes();
+  for (const MeshDistanceGrid& g : sdf.mesh_grids) total += g.bytes();
+  return total;
+}
+
 SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params) {
   validate(hash_params);
   SceneSdf sdf;

@@ -53,6 +53,10 @@ struct SceneSdf {
   std::vector<glm::mat4> world_to_object;  // per instance (build_scene_sdf fills it): queries reuse it
 };
 
+// Build time and payload bytes of all of a scene's structures (mesh grids + hash).
+double build_ms(const SceneSdf& sdf);
+size_t bytes(const SceneSdf& sdf);
+
 void validate(const SceneHashParams& params);  // throws Error for non-positive sizes etc.
 SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGrid>& grids, const SceneHashParams& params);
 SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params);

@@ -22,6 +22,11 @@ void SdfCpuRenderer::prepare(const Scene& scene) {
   tracer_ = std::make_unique<sdf::SphereTracer>(scene, *sdf_, options_.tracing);
 }
 
+std::optional<StructureStats> SdfCpuRenderer::structure_stats() const {
+  if (!sdf_) return std::nullopt;
+  return StructureStats{sdf::build_ms(*sdf_), sdf::bytes(*sdf_)};
+}
+
 FrameResult SdfCpuRenderer::render(const FrameRequest& request) {
   if (!tracer_) throw Error("internal: render before prepare");
   return render_cpu_frame(*tracer_, *scene_, request, threads_);

@@ -18,6 +18,7 @@ class SdfCpuRenderer : public Renderer {
   void prepare(const Scene& scene) override;
   FrameResult render(const FrameRequest& request) override;
   const sdf::SceneSdf& structures() const { return *sdf_; }
+  std::optional<StructureStats> structure_stats() const override;
 
  private:
   BackendOptions options_;

@@ -1,0 +1,133 @@
+#include "harness/benchmark_plan.h"
+
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include "scenes/error.h"
+#include "util/atomic_file.h"
+
+namespace sdfbench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string duration_text(double seconds) {
+  const long s = static_cast<long>(seconds + 0.5);
+  char text[32];
+  if (s >= 3600) std::snprintf(text, sizeof text, "%ldh%02ldm", s / 3600, (s / 60) % 60);
+  else if (s >= 60) std::snprintf(text, sizeof text, "%ldm%02lds", s / 60, s % 60);
+  else std::snprintf(text, sizeof text, "%lds", s);
+  return text;
+}
+
+std::string describe(const BenchConfig& c) {
+  std::ostringstream s;
+  if (!c.table.empty()) s << "[" << c.table << "] ";
+  s << c.scene << " " << c.backend << " " << to_string(c.mode) << " " << c.size.width << "x" << c.size.height;
+  return s.str();
+}
+
+// An error in one configuration (e.g. a structure over the device's buffer limit) is a row
+// saying so, not the end of a run of hours.
+Measurement error_row(const BenchConfig& c, size_t index, const std::string& message) {
+  Measurement m = configuration_fields(c, index);
+  m.agreement = "ERROR: " + message;
+  return m;
+}
+
+}  // namespace
+
+Shard parse_shard(const std::string& text) {
+  Shard shard;
+  const size_t slash = text.find('/');
+  auto parse = [&](std::string_view part, unsigned& out) {
+    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), out);
+    return !part.empty() && ec == std::errc() && end == part.data() + part.size();
+  };
+  if (slash == std::string::npos || !parse(std::string_view(text).substr(0, slash), shard.index) ||
+      !parse(std::string_view(text).substr(slash + 1), shard.count) || shard.count < 1 || shard.index < 1 ||
+      shard.index > shard.count)
+    throw Error("--shard '" + text + "': expected K/N with 1 <= K <= N, e.g. 2/4");
+  return shard;
+}
+
+bool in_shard(size_t i, const Shard& shard) { return i % shard.count == shard.index - 1; }
+
+std::vector<std::string> split_list(const std::string& text, const std::string& option) {
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ','))
+    if (!item.empty()) items.push_back(item);
+  if (items.empty()) throw Error(option + " '" + text + "': expected a comma-separated list");
+  return items;
+}
+
+template <class T>
+std::vector<T> parse_list(const std::string& text, const std::string& option) {
+  std::vector<T> values;
+  for (const std::string& item : split_list(text, option)) {
+    T v{};
+    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
+    if (ec != std::errc() || end != item.data() + item.size() || v < T{0})
+      throw Error(option + " '" + text + "': '" + item + "' is not a non-negative number");
+    values.push_back(v);
+  }
+  return values;
+}
+template std::vector<float> parse_list<float>(const std::string&, const std::string&);
+template std::vector<unsigned> parse_list<unsigned>(const std::string&, const std::string&);
+template std::vector<size_t> parse_list<size_t>(const std::string&, const std::string&);
+
+CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner, const PlanOptions& options) {
+  CsvTable table;
+  table.columns = measurement_columns();
+  if (!options.csv.empty()) check_output_path(options.csv, "--csv");
+  std::set<std::string> done;
+  if (options.resume && !options.csv.empty() && std::filesystem::exists(options.csv)) {
+    table = read_csv(options.csv);
+    if (table.columns != measurement_columns())
+      throw Error("--resume: '" + options.csv + "' has other columns than this sdfbench writes; use a new --csv file");
+    for (const auto& row : table.rows) done.insert(configuration_key(row, table.columns));
+  } else if (!options.resume && !options.csv.empty() && std::filesystem::exists(options.csv)) {
+    std::cerr << "note: overwriting '" << options.csv << "' (--resume continues a file instead)\n";
+  }
+
+  std::vector<size_t> todo;
+  size_t resumed = 0;
+  for (size_t i = 0; i < plan.size(); ++i) {
+    if (!in_shard(i, options.shard)) continue;
+    if (done.count(configuration_key(configuration_fields(plan[i], i)))) ++resumed;
+    else todo.push_back(i);
+  }
+  if (resumed) std::cerr << "resume: " << resumed << " configuration(s) already in '" << options.csv << "'\n";
+
+  const Clock::time_point start = Clock::now();
+  for (size_t k = 0; k < todo.size(); ++k) {
+    const BenchConfig& config = plan[todo[k]];
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    std::cerr << "[" << (k + 1) << "/" << todo.size() << "] " << describe(config) << "  (elapsed " << duration_text(elapsed);
+    if (k > 0) std::cerr << ", ~" << duration_text(elapsed / static_cast<double>(k) * static_cast<double>(todo.size() - k)) << " left";
+    std::cerr << ")\n" << std::flush;
+    Measurement m;
+    try {
+      m = runner.run(config, todo[k]);
+    } catch (const Error& e) {
+      m = error_row(config, todo[k], e.what());
+      std::cerr << "  error: " << e.what() << "\n";
+    }
+    std::printf("  %-10s %-8s %9.3f ms  %8.2f FPS  %7.3f Mrays/s  %s%s\n", m.backend.c_str(), m.mode.c_str(), m.ms_median,
+                m.fps, m.mrays_per_s, m.agreement.c_str(), m.budget_cut ? "  (budget cut)" : "");
+    std::fflush(stdout);
+    table.rows.push_back(to_csv_fields(m));
+    if (!options.csv.empty()) write_csv(options.csv, table);
+  }
+  return table;
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,37 @@
+#pragma once
+// Runs a list of configurations (a table or a sweep): the K-th of N shards, skipping rows a
+// previous run already wrote (--resume), with a progress line on stderr and the CSV rewritten
+// atomically after every row, so a killed run leaves a valid file that --resume completes.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/benchmark_runner.h"
+#include "harness/csv.h"
+
+namespace sdfbench {
+
+struct Shard {
+  unsigned index = 1, count = 1;  // 1-based: "--shard 2/4" is index 2 of count 4
+};
+// "K/N" with 1 <= K <= N; throws Error naming --shard otherwise.
+Shard parse_shard(const std::string& text);
+// Configuration i (0-based) belongs to shard K of N when i % N == K - 1: round robin, so every
+// shard gets a share of the slow (large) configurations.
+bool in_shard(size_t i, const Shard& shard);
+
+struct PlanOptions {
+  std::string csv;  // empty: no CSV
+  bool resume = false;
+  Shard shard;
+};
+
+// Returns the CSV table of this run's rows (those resumed from the file included).
+CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner, const PlanOptions& options);
+
+// Comma-separated list helpers shared by table and sweep.
+std::vector<std::string> split_list(const std::string& text, const std::string& option);
+template <class T>
+std::vector<T> parse_list(const std::string& text, const std::string& option);
+
+}  // namespace sdfbench

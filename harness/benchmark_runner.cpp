@@ -1,0 +1,144 @@
+#include "harness/benchmark_runner.h"
+
+#include <chrono>
+#include <set>
+
+#include "harness/system_info.h"
+#include "harness/timing_stats.h"
+#include "scenes/scene_source.h"
+
+namespace sdfbench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+bool is_sdf_backend(const std::string& backend) { return backend.rfind("sdf-", 0) == 0; }
+
+// "bunny" for a thesis scene, else its distinct meshes joined with '+'; triangles of those meshes.
+std::pair<std::string, size_t> mesh_summary(const Scene& scene) {
+  std::set<uint32_t> used;
+  for (const Instance& i : scene.instances) used.insert(i.mesh);
+  std::string names;
+  size_t triangles = 0;
+  for (uint32_t m : used) {
+    names += (names.empty() ? "" : "+") + scene.meshes[m].name;
+    triangles += scene.meshes[m].triangle_count();
+  }
+  return {names, triangles};
+}
+
+}  // namespace
+
+Measurement configuration_fields(const BenchConfig& config, size_t run_index) {
+  Measurement m;
+  m.run_index = run_index;
+  m.table = config.table;
+  m.scene = config.scene;
+  m.backend = config.backend;
+  m.mode = to_string(config.mode);
+  m.max_depth = config.max_depth;
+  m.width = config.size.width;
+  m.height = config.size.height;
+  if (is_sdf_backend(config.backend)) {
+    const sdf::SceneHashParams p = scene_hash_params_for(config.backend, config.options);
+    m.hash_cell = p.hash_cell;
+    m.octree_depth = p.octree_depth;
+    m.octree_min_objects = p.octree_min_objects;
+    m.mesh_cell = config.options.mesh_grid.cell_size;
+  }
+  return m;
+}
+
+const Scene& BenchmarkRunner::scene(const std::string& spec) {
+  if (!scene_ || scene_spec_ != spec) {
+    scene_.reset();
+    references_.clear();
+    scene_ = std::make_unique<Scene>(load_scene(spec));
+    scene_spec_ = spec;
+  }
+  return *scene_;
+}
+
+const FrameImages& BenchmarkRunner::reference(const BenchConfig& config) {
+  const std::string key = to_string(config.mode);
+  auto it = references_.find(key);
+  if (it != references_.end()) return it->second;
+  std::unique_ptr<Renderer> renderer = create_renderer(settings_.reference, config.options);
+  renderer->prepare(scene(config.scene));
+  FrameRequest request{settings_.check_size.width, settings_.check_size.height, config.mode, true};
+  return references_.emplace(key, std::move(renderer->render(request).images)).first->second;
+}
+
+Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
+  const Scene& s = scene(config.scene);
+  Measurement m = configuration_fields(config, run_index);
+  std::tie(m.mesh, m.triangles) = mesh_summary(s);
+  m.objects = s.instances.size();
+
+  std::unique_ptr<Renderer> renderer = create_renderer(config.backend, config.options);
+  const Clock::time_point prepare_start = Clock::now();
+  renderer->prepare(s);
+  m.prepare_ms = seconds_since(prepare_start) * 1e3;
+  if (const auto stats = renderer->structure_stats()) {
+    m.build_ms = stats->build_ms;
+    m.structure_bytes = static_cast<double>(stats->bytes);
+  }
+
+  // Frames until the budget would be exceeded by one more (estimated by the last frame's wall time).
+  const Clock::time_point start = Clock::now();
+  const double budget = settings_.budget_s;
+  auto room_for_another = [&](double last_ms) { return seconds_since(start) + last_ms / 1e3 <= budget; };
+  FrameRequest request{config.size.width, config.size.height, config.mode, false};
+  std::vector<FrameResult> timed;
+  FrameResult last;
+  bool rendered = false;
+  for (unsigned i = 0; i < settings_.warmup && (!rendered || room_for_another(last.wall_ms)); ++i) {
+    last = renderer->render(request);
+    rendered = true;
+  }
+  while (timed.size() < settings_.frames && (!rendered || room_for_another(last.wall_ms))) {
+    last = renderer->render(request);
+    rendered = true;
+    timed.push_back(last);
+  }
+  if (timed.empty()) timed.push_back(last);  // the budget allowed only the warm-up frame: report it, flagged
+  m.budget_cut = timed.size() < settings_.frames;
+  const FrameTimingSummary t = summarize_frames(timed);
+  m.frames = static_cast<unsigned>(timed.size());
+  m.clock = t.clock;
+  m.ms_median = t.median_ms;
+  m.ms_min = t.min_ms;
+  m.ms_max = t.max_ms;
+  m.ms_wall_median = t.wall_median_ms;
+  m.fps = t.fps;
+  m.mrays_per_s = t.mrays_per_s;
+  m.rays_per_pixel = static_cast<double>(timed.back().rays) / (static_cast<double>(m.width) * m.height);
+
+  // Agreement at the check size (a separate, untimed frame).
+  m.check_size = std::to_string(settings_.check_size.width) + "x" + std::to_string(settings_.check_size.height);
+  if (config.backend == settings_.reference) {
+    m.agreement = "reference";
+  } else {
+    const FrameRequest check{settings_.check_size.width, settings_.check_size.height, config.mode, true};
+    const FrameImages images = renderer->render(check).images;
+    const Agreement g = compare_frames(images, reference(config));
+    m.hit_agreement = g.hit_percent;
+    m.id_agreement = g.id_percent;
+    m.psnr = g.psnr;
+    const std::string failed = check_thresholds(g, settings_.thresholds);
+    m.agreement = failed.empty() ? "ok" : "DISAGREE: " + failed;
+  }
+  if (const uint32_t messages = renderer->validation_messages(); messages > 0)
+    m.agreement += " (" + std::to_string(messages) + " validation messages)";
+
+  m.device = renderer->device_name();
+  m.driver = renderer->driver_name();
+  m.cpu = cpu_model();
+  m.threads = cpu_thread_count(config.options);
+  m.commit = git_commit();
+  return m;
+}
+
+}  // namespace sdfbench

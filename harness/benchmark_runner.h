@@ -1,0 +1,54 @@
+#pragma once
+// Runs one benchmark configuration the way DESIGN.md's methodology says: prepare (timed),
+// warm-up frames, N timed frames inside a time budget, then the image-agreement check against
+// the reference backend at a check resolution. Scenes and reference images are cached across
+// configurations of one run.
+#include <map>
+#include <memory>
+#include <string>
+
+#include "harness/cli_common.h"
+#include "harness/image_agreement.h"
+#include "harness/measurement.h"
+#include "renderers/renderer.h"
+
+namespace sdfbench {
+
+struct BenchConfig {
+  std::string table;  // thesis table id, "sweep", or empty
+  std::string scene;  // descriptor path or generator spec
+  std::string backend;
+  RenderMode mode = RenderMode::Primary;
+  ImageSize size;
+  unsigned max_depth = 4;  // whitted recursion limit
+  BackendOptions options;
+};
+
+// The configuration columns of a row (no scene loaded, nothing run): what resume and error
+// rows use, and what run() starts from.
+Measurement configuration_fields(const BenchConfig& config, size_t run_index);
+
+struct BenchSettings {
+  unsigned warmup = 1, frames = 5;
+  double budget_s = 300;  // per configuration, from the first warm-up frame on
+  ImageSize check_size{160, 90};
+  std::string reference = "embree";
+  AgreementThresholds thresholds;
+};
+
+class BenchmarkRunner {
+ public:
+  explicit BenchmarkRunner(BenchSettings settings) : settings_(std::move(settings)) {}
+  Measurement run(const BenchConfig& config, size_t run_index);
+
+ private:
+  const Scene& scene(const std::string& spec);
+  const FrameImages& reference(const BenchConfig& config);
+
+  BenchSettings settings_;
+  std::string scene_spec_;  // one scene at a time: a 1000-instance scene is worth keeping, not ten
+  std::unique_ptr<Scene> scene_;
+  std::map<std::string, FrameImages> references_;  // by scene + mode, for the current scene
+};
+
+}  // namespace sdfbench

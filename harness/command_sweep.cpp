@@ -1,0 +1,88 @@
+// `sdfbench sweep`: the full grid of SDF structure parameters on one scene, each point with its
+// build time, bytes, FPS, Mrays/s, counters and agreement.
+#include <iostream>
+
+#include "harness/cli_common.h"
+#include "harness/commands.h"
+#include "harness/markdown_report.h"
+#include "harness/run_options.h"
+#include "scenes/error.h"
+#include "util/atomic_file.h"
+
+namespace sdfbench {
+namespace {
+
+struct SweepArgs {
+  std::string scene, backend = "sdf-octree", mode = "primary", size = "320x180", hash_cells = "10", depths = "4",
+              min_objects = "1", mesh_cells = "0";
+  unsigned max_depth = 4;
+  RunOptions run;
+  BackendOptions options;
+};
+
+void run_sweep(SweepArgs args) {
+  if (args.backend.rfind("sdf-", 0) != 0) throw Error("--backend '" + args.backend + "': a sweep varies SDF structures (sdf-octree, sdf-hash, sdf-cpu)");
+  create_renderer(args.backend, args.options);  // unknown backend: the usual error
+  args.run.settings.check_size = parse_size(args.run.check_size);
+  const PlanOptions plan_options = args.run.plan();
+  if (!args.run.markdown.empty()) check_output_path(args.run.markdown, "--markdown");
+  BenchConfig base;
+  base.table = "sweep";
+  base.scene = args.scene;
+  base.backend = args.backend;
+  base.mode = parse_mode_option(args.mode);
+  base.size = parse_size(args.size);
+  base.max_depth = args.max_depth;
+  base.options = args.options;
+  base.options.hash_cell_given = true;  // the sweep's hash cell is what the row says, also for sdf-hash
+  std::vector<BenchConfig> plan;
+  for (float cell : parse_list<float>(args.hash_cells, "--hash-cell"))
+    for (unsigned depth : parse_list<unsigned>(args.depths, "--octree-depth"))
+      for (unsigned min_objects : parse_list<unsigned>(args.min_objects, "--octree-min-objects"))
+        for (float mesh_cell : parse_list<float>(args.mesh_cells, "--mesh-cell")) {
+          BenchConfig c = base;
+          c.options.scene_hash.hash_cell = cell;
+          c.options.scene_hash.octree_depth = depth;
+          c.options.scene_hash.octree_min_objects = min_objects;
+          c.options.mesh_grid.cell_size = mesh_cell;
+          sdf::validate(c.options.scene_hash);
+          if (min_objects < 1) throw Error("--octree-min-objects: values must be >= 1");
+          plan.push_back(c);
+        }
+  std::cerr << plan.size() << " configurations\n";
+  BenchmarkRunner runner(args.run.settings);
+  const CsvTable rows = run_plan(plan, runner, plan_options);
+  write_markdown(args.run.markdown, rows);
+  std::cout << "\n" << markdown_report(rows, ThesisTables::load_default());
+}
+
+}  // namespace
+
+void register_sweep_command(CLI::App& app) {
+  auto args = std::make_shared<SweepArgs>();
+  CLI::App* cmd = app.add_subcommand("sweep", "Sweep SDF structure parameters (every combination) on one scene");
+  cmd->add_option("--scene", args->scene, "scene descriptor (.json) or generator, e.g. thesis:bunny:1000")->required();
+  cmd->add_option("--backend", args->backend, "SDF backend")->capture_default_str();
+  cmd->add_option("--mode", args->mode, "primary | shadow | whitted")->capture_default_str();
+  cmd->add_option("--size", args->size, "WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--max-depth", args->max_depth, "whitted recursion depth")->capture_default_str()->check(CLI::Range(0u, 16u));
+  cmd->add_option("--hash-cell", args->hash_cells, "hash cell sizes, comma-separated")->capture_default_str();
+  cmd->add_option("--octree-depth", args->depths, "octree depths, comma-separated")->capture_default_str();
+  cmd->add_option("--octree-min-objects", args->min_objects, "octree min objects, comma-separated")->capture_default_str();
+  cmd->add_option("--mesh-cell", args->mesh_cells, "mesh grid cell sizes, comma-separated (0: from cells per extent)")
+      ->capture_default_str();
+  cmd->add_option("--cells-per-extent", args->options.mesh_grid.cells_per_extent,
+                  "mesh grid cells along the mesh's largest extent (with --mesh-cell 0)")
+      ->capture_default_str()->check(CLI::Range(1u, 1024u));
+  cmd->add_option("--max-steps", args->options.tracing.max_steps, "sphere-tracing steps per ray")
+      ->capture_default_str()->check(CLI::Range(1u, 1000000u));
+  cmd->add_option("--hit-epsilon", args->options.tracing.hit_epsilon, "sphere-tracing hit distance, relative to the scene size")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  add_run_options(*cmd, args->run);
+  cmd->add_option("--device", args->options.device, "Vulkan device: lavapipe (default), gpu, an index or a name");
+  cmd->add_option("--threads", args->options.threads, "CPU threads (Embree reference, sdf-cpu)")->check(CLI::Range(1u, 1024u));
+  cmd->add_flag("--validate", args->options.validation, "enable the Vulkan validation layer");
+  cmd->callback([args] { run_sweep(*args); });
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,187 @@
+#include "harness/markdown_report.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace sdfbench {
+namespace {
+
+// A row, read by column name.
+struct Row {
+  const CsvTable* table;
+  const std::vector<std::string>* fields;
+  const std::string& operator[](const std::string& column) const { return fields->at(table->column(column)); }
+  double number(const std::string& column) const { return std::atof((*this)[column].c_str()); }
+};
+
+std::vector<Row> rows_of(const CsvTable& csv) {
+  std::vector<Row> rows;
+  for (const auto& fields : csv.rows) rows.push_back({&csv, &fields});
+  return rows;
+}
+
+std::string fixed(double v, int digits) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", digits, v);
+  return text;
+}
+
+// FPS with ~3 significant digits, and the row's flags.
+std::string fps_cell(const Row& r) {
+  if (r["agreement"].rfind("ERROR", 0) == 0) return "ERROR";
+  const double fps = r.number("fps");
+  std::string text = fixed(fps, fps >= 100 ? 0 : fps >= 10 ? 1 : fps >= 1 ? 2 : 3);
+  if (r["budget_cut"] == "1") text += " †";
+  if (r["agreement"].rfind("DISAGREE", 0) == 0) text += " ✗";
+  return text;
+}
+
+std::string thesis_cell(const ThesisValue& v) { return v.upper_bound ? "<1" : fixed(v.fps, v.fps >= 10 ? 0 : 1); }
+
+std::string sizes_of(const std::vector<Row>& rows) {
+  std::set<std::string> sizes;
+  for (const Row& r : rows) sizes.insert(r["width"] + "x" + r["height"]);
+  std::string text;
+  for (const std::string& s : sizes) text += (text.empty() ? "" : ", ") + s;
+  return text;
+}
+
+std::vector<std::string> ordered_meshes(const std::vector<Row>& rows) {
+  std::vector<std::string> meshes;
+  for (const Row& r : rows)
+    if (std::find(meshes.begin(), meshes.end(), r["mesh"]) == meshes.end()) meshes.push_back(r["mesh"]);
+  return meshes;
+}
+
+std::vector<size_t> ordered_counts(const std::vector<Row>& rows) {
+  std::set<size_t> counts;
+  for (const Row& r : rows) counts.insert(static_cast<size_t>(r.number("objects")));
+  return {counts.begin(), counts.end()};
+}
+
+const Row* find_row(const std::vector<Row>& rows, const std::string& mesh, size_t objects) {
+  for (const Row& r : rows)
+    if (r["mesh"] == mesh && static_cast<size_t>(r.number("objects")) == objects) return &r;
+  return nullptr;
+}
+
+void header(std::ostringstream& out, const std::string& first, const std::vector<size_t>& counts) {
+  out << "| " << first << " |";
+  for (size_t c : counts) out << " " << c << " |";
+  out << "\n|---|";
+  for (size_t i = 0; i < counts.size(); ++i) out << "---:|";
+  out << "\n";
+}
+
+void thesis_table(std::ostringstream& out, const ThesisTableConfig& config, const std::vector<Row>& rows,
+                  const ThesisTables& thesis) {
+  out << "### Table " << config.id << ": " << config.backend << ", " << to_string(config.mode) << " (" << sizes_of(rows)
+      << ")\n\n" << config.description << ". FPS measured here, the thesis' value in brackets (GTX 1070, 1280x720).\n\n";
+  const std::vector<size_t> counts = ordered_counts(rows);
+  header(out, "mesh \\ objects", counts);
+  for (const std::string& mesh : ordered_meshes(rows)) {
+    out << "| " << mesh << " |";
+    for (size_t c : counts) {
+      const Row* r = find_row(rows, mesh, c);
+      const auto t = thesis.find(config.id, mesh, c);
+      out << " " << (r ? fps_cell(*r) : "–") << (t ? " (" + thesis_cell(*t) + ")" : "") << " |";
+    }
+    out << "\n";
+  }
+  out << "\n";
+}
+
+void speedup_table(std::ostringstream& out, const std::vector<Row>& sdf, const std::vector<Row>& tri,
+                   const ThesisTables& thesis) {
+  out << "### Speed-up of table 6.1 over table 6.3 (sdf-octree whitted FPS / tri-aabb shadow FPS)\n\n"
+         "Measured here, the thesis' ratio in brackets (its \"<1\" entries taken as 1, so its ratio is a lower bound there).\n\n";
+  const std::vector<size_t> counts = ordered_counts(sdf);
+  header(out, "mesh \\ objects", counts);
+  for (const std::string& mesh : ordered_meshes(sdf)) {
+    out << "| " << mesh << " |";
+    for (size_t c : counts) {
+      const Row* a = find_row(sdf, mesh, c);
+      const Row* b = find_row(tri, mesh, c);
+      const auto ta = thesis.find("6.1", mesh, c), tb = thesis.find("6.3", mesh, c);
+      std::string cell = a && b && b->number("fps") > 0 ? fixed(a->number("fps") / b->number("fps"), 2) + "x" : "–";
+      if (ta && tb) cell += " (" + fixed(ta->fps / tb->fps, 0) + "x" + (tb->upper_bound ? "+" : "") + ")";
+      out << " " << cell << " |";
+    }
+    out << "\n";
+  }
+  out << "\n";
+}
+
+void backends_table(std::ostringstream& out, const std::string& mode, const std::vector<Row>& rows) {
+  std::vector<std::string> backends;
+  for (const Row& r : rows)
+    if (std::find(backends.begin(), backends.end(), r["backend"]) == backends.end()) backends.push_back(r["backend"]);
+  out << "### Every backend, " << mode << " mode (" << sizes_of(rows) << "): FPS\n\n| mesh | objects |";
+  for (const std::string& b : backends) out << " " << b << " |";
+  out << "\n|---|---:|";
+  for (size_t i = 0; i < backends.size(); ++i) out << "---:|";
+  out << "\n";
+  std::vector<std::pair<std::string, size_t>> keys;
+  for (const Row& r : rows) {
+    const std::pair<std::string, size_t> k{r["mesh"], static_cast<size_t>(r.number("objects"))};
+    if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+  }
+  for (const auto& [mesh, objects] : keys) {
+    out << "| " << mesh << " | " << objects << " |";
+    for (const std::string& b : backends) {
+      const Row* found = nullptr;
+      for (const Row& r : rows)
+        if (r["backend"] == b && r["mesh"] == mesh && static_cast<size_t>(r.number("objects")) == objects) found = &r;
+      out << " " << (found ? fps_cell(*found) : "–") << " |";
+    }
+    out << "\n";
+  }
+  out << "\n";
+}
+
+void sweep_table(std::ostringstream& out, const std::vector<Row>& rows) {
+  out << "### Sweep: " << rows.front()["scene"] << ", " << rows.front()["backend"] << ", " << rows.front()["mode"] << " ("
+      << sizes_of(rows) << ")\n\n"
+      << "| hash cell | octree depth | min objects | mesh cell | build ms | structure MB | FPS | Mrays/s | steps/ray | "
+         "hit % | id % |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const Row& r : rows)
+    out << "| " << r["hash_cell"] << " | " << r["octree_depth"] << " | " << r["octree_min_objects"] << " | "
+        << r["mesh_cell"] << " | " << fixed(r.number("build_ms"), 0) << " | " << fixed(r.number("structure_bytes") / 1e6, 1)
+        << " | " << fps_cell(r) << " | " << fixed(r.number("mrays_per_s"), 3) << " | "
+        << (r["steps_per_ray"].empty() ? "–" : fixed(r.number("steps_per_ray"), 1)) << " | "
+        << (r["hit_agreement"].empty() ? "–" : fixed(r.number("hit_agreement"), 2)) << " | "
+        << (r["id_agreement"].empty() ? "–" : fixed(r.number("id_agreement"), 2)) << " |\n";
+  out << "\n";
+}
+
+}  // namespace
+
+std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
+  const std::vector<Row> rows = rows_of(csv);
+  std::ostringstream out;
+  std::map<std::string, std::vector<Row>> by_table, by_mode;
+  std::vector<Row> sweep;
+  for (const Row& r : rows) {
+    if (r["table"] == "sweep") {
+      sweep.push_back(r);
+      continue;
+    }
+    if (!r["table"].empty()) by_table[r["table"]].push_back(r);
+    by_mode[r["mode"]].push_back(r);
+  }
+  for (const ThesisTableConfig& config : thesis_table_configs())
+    if (by_table.count(config.id)) thesis_table(out, config, by_table[config.id], thesis);
+  if (by_table.count("6.1") && by_table.count("6.3")) speedup_table(out, by_table["6.1"], by_table["6.3"], thesis);
+  for (const auto& [mode, mode_rows] : by_mode) backends_table(out, mode, mode_rows);
+  if (!sweep.empty()) sweep_table(out, sweep);
+  if (rows.empty()) out << "(no measurements)\n";
+  out << "Flags: ✗ images disagree with the reference (see the CSV's agreement column), † the time budget cut the run "
+         "(fewer frames than asked; a single cold frame when only the warm-up fitted), ERROR the configuration failed.\n";
+  return out.str();
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,15 @@
+#pragma once
+// Markdown views of a measurement CSV: the thesis' tables laid out like the thesis (rows
+// meshes, columns object counts) with the thesis' value beside ours, the 6.1/6.3 speed-up,
+// every backend side by side per mode, and sweeps. Flagged cells: "✗" images disagree with the
+// reference, "†" the time budget cut the run short, "ERROR" the configuration failed.
+#include <string>
+
+#include "harness/csv.h"
+#include "harness/thesis_tables.h"
+
+namespace sdfbench {
+
+std::string markdown_report(const CsvTable& rows, const ThesisTables& thesis);
+
+}  // namespace sdfbench

@@ -1,0 +1,46 @@
+#pragma once
+// One benchmark measurement = one CSV row (README, "CSV columns"): the configuration that
+// produced it, its figures, its image agreement with the reference and where it ran.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sdfbench {
+
+struct Measurement {
+  // configuration
+  size_t run_index = 0;  // position in the run's configuration list (shards and merge keep it)
+  std::string table;     // thesis table this row reproduces ("6.1", "6.2", "6.3"), "sweep", or empty
+  std::string scene, mesh;
+  size_t triangles = 0, objects = 0;
+  std::string backend, mode;
+  unsigned max_depth = 0;
+  unsigned width = 0, height = 0;
+  std::optional<double> hash_cell, octree_depth, octree_min_objects, mesh_cell;  // SDF backends only
+  // timing
+  unsigned frames = 0;
+  std::string clock;  // "device" (GPU timestamps) or "wall"
+  double ms_median = 0, ms_min = 0, ms_max = 0, ms_wall_median = 0, fps = 0, mrays_per_s = 0, rays_per_pixel = 0;
+  std::optional<double> steps_per_ray, instance_evals_per_ray, triangle_evals_per_ray;  // instrumented run
+  double prepare_ms = 0;                                 // renderer prepare(): structure build or cache load + upload
+  std::optional<double> build_ms, structure_bytes;       // SDF structures
+  // agreement with the reference backend at the check size
+  std::string check_size;
+  std::optional<double> hit_agreement, id_agreement, psnr;
+  std::string agreement;  // "ok", "reference", or "DISAGREE: <what>"
+  bool budget_cut = false;
+  // where
+  std::string device, driver, cpu;
+  unsigned threads = 0;
+  std::string commit;
+};
+
+const std::vector<std::string>& measurement_columns();
+std::vector<std::string> to_csv_fields(const Measurement& m);
+
+// The columns that identify a configuration (everything a rerun must match): resume skips
+// rows whose key is already in the file, merge refuses two files with the same key.
+std::string configuration_key(const std::vector<std::string>& fields, const std::vector<std::string>& columns);
+std::string configuration_key(const Measurement& m);
+
+}  // namespace sdfbench

@@ -1,0 +1,37 @@
+#include "harness/run_options.h"
+
+#include "harness/markdown_report.h"
+#include "harness/thesis_tables.h"
+#include "util/atomic_file.h"
+
+namespace sdfbench {
+
+PlanOptions RunOptions::plan() const { return {csv, resume, parse_shard(shard)}; }
+
+void add_run_options(CLI::App& command, RunOptions& o) {
+  const std::string method = "Methodology", out = "Output";
+  command.add_option("--frames", o.settings.frames, "timed frames per configuration")
+      ->capture_default_str()->check(CLI::Range(1u, 100000u))->group(method);
+  command.add_option("--warmup", o.settings.warmup, "untimed warm-up frames per configuration")
+      ->capture_default_str()->check(CLI::Range(0u, 1000u))->group(method);
+  command.add_option("--budget-s", o.settings.budget_s,
+                     "time budget per configuration (s): no further frame starts once it would be exceeded; the row says so")
+      ->capture_default_str()->check(CLI::PositiveNumber)->group(method);
+  command.add_option("--check-size", o.check_size, "resolution of the image-agreement check against the reference")
+      ->capture_default_str()->group(method);
+  command.add_option("--reference", o.settings.reference, "backend every row's images are compared with")
+      ->capture_default_str()->group(method);
+  command.add_option("--csv", o.csv, "write one row per measurement (rewritten atomically after every row)")->group(out);
+  command.add_option("--markdown", o.markdown, "write the markdown tables at the end")->group(out);
+  command.add_option("--shard", o.shard, "run only the K-th of N slices of the configurations (round robin), e.g. 2/4")
+      ->capture_default_str()->group(out);
+  command.add_flag("--resume", o.resume, "keep the rows already in --csv and run only the missing configurations")->group(out);
+}
+
+void write_markdown(const std::string& path, const CsvTable& rows) {
+  if (path.empty()) return;
+  const std::string text = markdown_report(rows, ThesisTables::load_default());
+  write_file_atomically(path, std::as_bytes(std::span(text.data(), text.size())));
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,25 @@
+#pragma once
+// Options shared by `table` and `sweep`: methodology (frames, warm-up, budget, check size),
+// outputs (CSV, markdown) and scale-out (shard, resume).
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "harness/benchmark_plan.h"
+#include "harness/benchmark_runner.h"
+
+namespace sdfbench {
+
+struct RunOptions {
+  BenchSettings settings;
+  std::string check_size = "320x180", shard = "1/1", csv, markdown;
+  bool resume = false;
+  PlanOptions plan() const;  // parses --shard
+};
+
+void add_run_options(CLI::App& command, RunOptions& options);
+
+// Writes the markdown report of `rows` (with the thesis' values) atomically, if a path was given.
+void write_markdown(const std::string& path, const CsvTable& rows);
+
+}  // namespace sdfbench

@@ -1,0 +1,174 @@
+#!/usr/bin/python3
+"""Plots from sdfbench CSVs (table, sweep, merge), with Debian's python3-matplotlib.
+
+    harness/scripts/plot_results.py results/lavapipe/tables.csv [more.csv ...] --out-dir results/lavapipe/plots
+
+Writes, for whatever the CSVs contain:
+  fps_vs_objects_<mode>.png   FPS vs object count (log-log), one panel per mesh, one line per backend
+  thesis_vs_measured.png      each thesis table: our FPS and the thesis' FPS vs object count, per mesh
+  sweep_<metric>.png          sweep heat maps: hash cell x octree depth -> FPS and steps/ray
+Rows flagged as disagreeing with the reference are drawn hollow; budget-cut rows get a dagger.
+"""
+import argparse
+import csv
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+THESIS_CSV = os.path.join(HERE, "..", "..", "scenes", "thesis_tables.csv")
+THESIS_CONFIG = {"6.1": ("sdf-octree", "whitted"), "6.2": ("sdf-hash", "whitted"), "6.3": ("tri-aabb", "shadow")}
+
+
+def read_rows(paths):
+    rows = []
+    for path in paths:
+        with open(path, newline="") as f:
+            rows.extend(csv.DictReader(f))
+    return rows
+
+
+def read_thesis():
+    values = {}
+    with open(THESIS_CSV, newline="") as f:
+        for row in csv.DictReader(line for line in f if not line.startswith("#")):
+            values[(row["table"], row["mesh"], int(row["objects"]))] = float(row["fps"])
+    return values
+
+
+def number(text):
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return None
+
+
+def usable(row):
+    return not row["agreement"].startswith("ERROR") and (number(row["fps"]) or 0) > 0
+
+
+def save(fig, path):
+    tmp = os.path.join(os.path.dirname(path), "." + os.path.basename(path) + ".tmp.png")
+    fig.savefig(tmp, dpi=120, bbox_inches="tight")
+    os.replace(tmp, path)  # atomic: never a half-written plot
+    plt.close(fig)
+    print("wrote", path)
+
+
+def plot_series(ax, points, label, marker="o"):
+    points = sorted(points)
+    xs = [p[0] for p in points]
+    ys = [p[1] for p in points]
+    line, = ax.plot(xs, ys, marker=marker, label=label)
+    for x, y, row in points:
+        if row is not None and row["agreement"].startswith("DISAGREE"):
+            ax.plot([x], [y], marker=marker, markersize=11, markerfacecolor="none", color=line.get_color())
+        if row is not None and row["budget_cut"] == "1":
+            ax.annotate("\u2020", (x, y), textcoords="offset points", xytext=(4, 4))
+
+
+def fps_vs_objects(rows, out_dir):
+    table_rows = [r for r in rows if r["table"] != "sweep" and usable(r)]
+    for mode in sorted({r["mode"] for r in table_rows}):
+        mode_rows = [r for r in table_rows if r["mode"] == mode]
+        meshes = list(dict.fromkeys(r["mesh"] for r in mode_rows))
+        fig, axes = plt.subplots(1, len(meshes), figsize=(4.2 * len(meshes), 3.6), squeeze=False)
+        for ax, mesh in zip(axes[0], meshes):
+            series = defaultdict(list)
+            for r in mode_rows:
+                if r["mesh"] == mesh:
+                    series[r["backend"]].append((int(r["objects"]), float(r["fps"]), r))
+            for backend, points in series.items():
+                plot_series(ax, points, backend)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_title(f"{mesh}, {mode}")
+            ax.set_xlabel("objects")
+            ax.set_ylabel("FPS")
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=8)
+        sizes = sorted({f'{r["width"]}x{r["height"]}' for r in mode_rows})
+        fig.suptitle(f"FPS vs object count ({', '.join(sizes)}; device: {mode_rows[0]['device']})", fontsize=10)
+        save(fig, os.path.join(out_dir, f"fps_vs_objects_{mode}.png"))
+
+
+def thesis_vs_measured(rows, out_dir):
+    thesis = read_thesis()
+    tables = [t for t in THESIS_CONFIG if any(r["table"] == t and usable(r) for r in rows)]
+    if not tables:
+        return
+    fig, axes = plt.subplots(1, len(tables), figsize=(4.8 * len(tables), 3.8), squeeze=False)
+    for ax, table in zip(axes[0], tables):
+        table_rows = [r for r in rows if r["table"] == table and usable(r)]
+        for mesh in dict.fromkeys(r["mesh"] for r in table_rows):
+            ours = [(int(r["objects"]), float(r["fps"]), r) for r in table_rows if r["mesh"] == mesh]
+            plot_series(ax, ours, f"{mesh} (ours)")
+            theirs = [(n, thesis[(table, mesh, n)], None) for n, _, _ in ours if (table, mesh, n) in thesis]
+            if theirs:
+                plot_series(ax, theirs, f"{mesh} (thesis)", marker="x")
+        backend, mode = THESIS_CONFIG[table]
+        ax.set_title(f"table {table}: {backend}, {mode}")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("objects")
+        ax.set_ylabel("FPS")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("Thesis (GTX 1070, 1280x720) vs measured here", fontsize=10)
+    save(fig, os.path.join(out_dir, "thesis_vs_measured.png"))
+
+
+def sweep_heatmaps(rows, out_dir):
+    sweep = [r for r in rows if r["table"] == "sweep" and usable(r)]
+    if not sweep:
+        return
+    cells = sorted({float(r["hash_cell"]) for r in sweep})
+    depths = sorted({int(float(r["octree_depth"])) for r in sweep})
+    for metric, title in (("fps", "FPS"), ("steps_per_ray", "sphere-tracing steps per ray")):
+        grid = [[None for _ in cells] for _ in depths]
+        for r in sweep:
+            value = number(r[metric])
+            if value is not None:
+                grid[depths.index(int(float(r["octree_depth"])))][cells.index(float(r["hash_cell"]))] = value
+        if all(v is None for line in grid for v in line):
+            continue
+        fig, ax = plt.subplots(figsize=(1.2 * len(cells) + 2.5, 0.8 * len(depths) + 1.8))
+        data = [[v if v is not None else float("nan") for v in line] for line in grid]
+        image = ax.imshow(data, cmap="viridis", aspect="auto", origin="lower")
+        for y, line in enumerate(grid):
+            for x, v in enumerate(line):
+                ax.text(x, y, "–" if v is None else f"{v:.3g}", ha="center", va="center", color="w", fontsize=8)
+        ax.set_xticks(range(len(cells)), [f"{c:g}" for c in cells])
+        ax.set_yticks(range(len(depths)), [str(d) for d in depths])
+        ax.set_xlabel("hash cell")
+        ax.set_ylabel("octree depth")
+        ax.set_title(f"{title}: {sweep[0]['scene']}, {sweep[0]['backend']} {sweep[0]['mode']}", fontsize=9)
+        fig.colorbar(image, ax=ax)
+        save(fig, os.path.join(out_dir, f"sweep_{metric}.png"))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("csv", nargs="+", help="CSV files written by sdfbench table, sweep or merge")
+    parser.add_argument("--out-dir", required=True, help="directory for the PNGs (must exist)")
+    args = parser.parse_args()
+    if not os.path.isdir(args.out_dir):
+        sys.exit(f"plot_results.py: error: --out-dir '{args.out_dir}' is not a directory")
+    try:
+        rows = read_rows(args.csv)
+    except (OSError, csv.Error) as e:
+        sys.exit(f"plot_results.py: error: {e}")
+    if rows and "fps" not in rows[0]:
+        sys.exit("plot_results.py: error: not an sdfbench measurement CSV (no 'fps' column)")
+    fps_vs_objects(rows, args.out_dir)
+    thesis_vs_measured(rows, args.out_dir)
+    sweep_heatmaps(rows, args.out_dir)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,245 @@
+// The harness around the backends: CSV reading/writing, the thesis table reader, markdown
+// layout, sharding, merge checks, resume after a kill. Runs use the CPU backends at tiny sizes.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <set>
+#include <thread>
+
+#include "harness/benchmark_plan.h"
+#include "harness/csv.h"
+#include "harness/markdown_report.h"
+#include "harness/measurement.h"
+#include "harness/thesis_tables.h"
+#include "scenes/error.h"
+#include "tests/test_support.h"
+
+namespace sdfbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(Csv, EscapesAndParsesBackQuotesCommasAndLineBreaks) {
+  const std::vector<std::string> fields = {"plain", "a,b", "say \"hi\"", "two\nlines", "", "llvmpipe (LLVM 15, 256 bits)"};
+  EXPECT_EQ(csv_line({"a,b", "q\"q", "x"}), "\"a,b\",\"q\"\"q\",x\n");
+  const CsvTable t = parse_csv(csv_line({"c1", "c2", "c3", "c4", "c5", "c6"}) + csv_line(fields), "test");
+  ASSERT_EQ(t.rows.size(), 1u);
+  EXPECT_EQ(t.rows[0], fields);
+  EXPECT_EQ(t.column("c4"), 3u);
+  EXPECT_THROW(t.column("nope"), Error);
+  // CRLF line ends and a missing final newline are accepted.
+  const CsvTable crlf = parse_csv("a,b\r\n1,2\r\n3,4", "crlf");
+  ASSERT_EQ(crlf.rows.size(), 2u);
+  EXPECT_EQ(crlf.rows[1], (std::vector<std::string>{"3", "4"}));
+}
+
+TEST(Csv, MalformedFilesAreClearErrors) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"a,b\n1,2,3\n", "row 1 has 3 fields"},
+      {"a,b\n\"open,2\n", "unterminated quoted field"},
+      {"a,b\n1,x\"y\n", "stray quote"},
+      {"", "empty CSV"},
+  };
+  for (const auto& [text, words] : cases) {
+    try {
+      parse_csv(text, "bad.csv");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(Csv, WriteReadRoundTripThroughAFile) {
+  test::TempDir dir;
+  CsvTable t;
+  t.columns = {"x", "y"};
+  t.rows = {{"1", "a \"quoted\", value"}, {"2", ""}};
+  write_csv(dir.path() / "t.csv", t);
+  const CsvTable back = read_csv(dir.path() / "t.csv");
+  EXPECT_EQ(back.columns, t.columns);
+  EXPECT_EQ(back.rows, t.rows);
+  EXPECT_THROW(write_csv(dir.path() / "missing" / "t.csv", t), Error);
+}
+
+TEST(MeasurementColumns, MatchTheDocumentedListAndFieldCount) {
+  const std::vector<std::string>& c = measurement_columns();
+  for (const char* required : {"scene", "mesh", "triangles", "objects", "backend", "mode", "width", "height", "hash_cell",
+                               "octree_depth", "octree_min_objects", "mesh_cell", "frames", "ms_median", "ms_min", "ms_max",
+                               "fps", "mrays_per_s", "steps_per_ray", "instance_evals_per_ray", "triangle_evals_per_ray",
+                               "build_ms", "structure_bytes", "hit_agreement", "id_agreement", "psnr", "budget_cut",
+                               "device", "driver", "cpu", "threads", "commit"})
+    EXPECT_NE(std::find(c.begin(), c.end(), required), c.end()) << required;
+  EXPECT_EQ(to_csv_fields(Measurement{}).size(), c.size());
+  EXPECT_EQ(std::set<std::string>(c.begin(), c.end()).size(), c.size()) << "duplicate column";
+}
+
+TEST(Shard, RoundRobinPartitionCoversEveryConfigurationOnce) {
+  for (unsigned n = 1; n <= 5; ++n)
+    for (size_t i = 0; i < 23; ++i) {
+      int owners = 0;
+      for (unsigned k = 1; k <= n; ++k) owners += in_shard(i, Shard{k, n});
+      EXPECT_EQ(owners, 1) << i << " of " << n;
+    }
+  EXPECT_EQ(parse_shard("2/4").index, 2u);
+  for (const char* bad : {"0/2", "3/2", "2", "a/b", "1/0", "1/2/3", ""}) EXPECT_THROW(parse_shard(bad), Error) << bad;
+}
+
+TEST(ThesisTables, ReadsTheCommittedCopy) {
+  const ThesisTables t = ThesisTables::load_default();
+  EXPECT_EQ(t.size(), 48u);  // 3 tables x 4 meshes x 4 object counts
+  ASSERT_TRUE(t.find("6.1", "bunny", 1000));
+  EXPECT_EQ(t.find("6.1", "bunny", 1000)->fps, 19);
+  EXPECT_TRUE(t.find("6.3", "bunny", 1000)->upper_bound);
+  EXPECT_FALSE(t.find("6.3", "monkey", 100)->upper_bound);
+  EXPECT_FALSE(t.find("6.4", "bunny", 1));
+  test::TempDir dir;
+  EXPECT_THROW(ThesisTables::load(dir.write("bad.csv", "table,mesh,triangles,objects,fps,fps_upper_bound\n6.1,bunny,1,x,2,0\n")),
+               Error);
+  EXPECT_THROW(ThesisTables::load(dir.path() / "none.csv"), Error);
+}
+
+CsvTable rows_for_markdown() {
+  CsvTable t;
+  t.columns = measurement_columns();
+  auto add = [&](const std::string& table, const std::string& mesh, size_t objects, const std::string& backend,
+                 const std::string& mode, double fps, const std::string& agreement, bool cut) {
+    Measurement m;
+    m.table = table;
+    m.mesh = mesh;
+    m.objects = objects;
+    m.backend = backend;
+    m.mode = mode;
+    m.width = 320;
+    m.height = 180;
+    m.fps = fps;
+    m.agreement = agreement;
+    m.budget_cut = cut;
+    t.rows.push_back(to_csv_fields(m));
+  };
+  add("6.1", "bunny", 1, "sdf-octree", "whitted", 12.5, "ok", false);
+  add("6.1", "bunny", 10, "sdf-octree", "whitted", 4.25, "DISAGREE: hit", false);
+  add("6.3", "bunny", 1, "tri-aabb", "shadow", 2.5, "ok", false);
+  add("6.3", "bunny", 10, "tri-aabb", "shadow", 0.5, "ok", true);
+  add("", "bunny", 1, "embree", "shadow", 300, "reference", false);
+  return t;
+}
+
+TEST(MarkdownReport, LaysOutThesisTablesWithThesisValuesAndFlags) {
+  const std::string md = markdown_report(rows_for_markdown(), ThesisTables::load_default());
+  EXPECT_NE(md.find("### Table 6.1: sdf-octree, whitted (320x180)"), std::string::npos) << md;
+  EXPECT_NE(md.find("| mesh \\ objects | 1 | 10 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| bunny | 12.5 (380) | 4.25 ✗ (100) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| bunny | 2.50 (9.0) | 0.500 † (1.0) |"), std::string::npos) << md;
+  // Speed-up 6.1 / 6.3: 12.5 / 2.5 = 5x measured, 380 / 9 = 42x in the thesis.
+  EXPECT_NE(md.find("| bunny | 5.00x (42x) | 8.50x (100x) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("### Every backend, shadow mode"), std::string::npos) << md;
+  EXPECT_EQ(md.find("6.2"), std::string::npos) << "no rows for table 6.2, so no such table";
+}
+
+// A small sweep on the CPU backends (sdf-cpu vs the Embree reference), 4 configurations.
+const std::string kSweep =
+    "sweep --scene thesis:sphere:4 --backend sdf-cpu --size 32x18 --check-size 32x18 --frames 1 --warmup 0 "
+    "--hash-cell 10,20 --octree-depth 0,1 --cells-per-extent 8";
+
+std::set<std::string> configuration_keys(const CsvTable& t) {
+  std::set<std::string> keys;
+  for (const auto& row : t.rows) keys.insert(configuration_key(row, t.columns));
+  return keys;
+}
+
+TEST(SweepCommand, ShardsMergeToTheUnshardedRows) {
+  test::TempDir dir;
+  const auto all = dir.path() / "all.csv", s1 = dir.path() / "s1.csv", s2 = dir.path() / "s2.csv",
+             merged = dir.path() / "merged.csv";
+  for (const auto& [args, path] : {std::pair{std::string(""), all}, {" --shard 1/2", s1}, {" --shard 2/2", s2}}) {
+    const test::CommandResult r = test::run_sdfbench(kSweep + args + " --csv " + path.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  const CsvTable full = read_csv(all);
+  ASSERT_EQ(full.rows.size(), 4u);
+  for (const auto& row : full.rows) {
+    EXPECT_FALSE(row[full.column("build_ms")].empty());
+    EXPECT_FALSE(row[full.column("hit_agreement")].empty());
+    EXPECT_NE(std::stod(row[full.column("fps")]), 0.0);
+  }
+  EXPECT_EQ(read_csv(s1).rows.size(), 2u);
+  const test::CommandResult m = test::run_sdfbench("merge " + s1.string() + " " + s2.string() + " --csv " + merged.string() +
+                                                   " --markdown " + (dir.path() / "m.md").string());
+  ASSERT_EQ(m.exit_code, 0) << m.output;
+  const CsvTable joined = read_csv(merged);
+  EXPECT_EQ(configuration_keys(joined), configuration_keys(full));
+  for (size_t i = 0; i < joined.rows.size(); ++i)  // same order as the unsharded run
+    EXPECT_EQ(joined.rows[i][joined.column("run_index")], full.rows[i][full.column("run_index")]);
+  EXPECT_TRUE(fs::exists(dir.path() / "m.md"));
+
+  // Overlapping inputs and foreign columns are refused.
+  test::CommandResult bad = test::run_sdfbench("merge " + s1.string() + " " + all.string() + " --csv " + merged.string());
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("both measure"), std::string::npos) << bad.output;
+  const auto foreign = dir.write("foreign.csv", "a,b\n1,2\n");
+  bad = test::run_sdfbench("merge " + s1.string() + " " + foreign.string() + " --csv " + merged.string());
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("other columns"), std::string::npos) << bad.output;
+}
+
+TEST(SweepCommand, KilledRunLeavesAValidCsvThatResumeCompletes) {
+  test::TempDir dir;
+  const fs::path csv = dir.path() / "run.csv";
+  const std::string command = std::string(SDFBENCH_BINARY) + " " + kSweep + " --csv " + csv.string();
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", ("exec " + command + " >/dev/null 2>&1").c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Kill it as soon as the first row is in the file (or when it has finished).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  int status = 0;
+  bool exited = false;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) {
+      exited = true;
+      break;
+    }
+    if (fs::exists(csv) && read_csv(csv).rows.size() >= 1) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (!exited) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+  }
+  const size_t rows_before = read_csv(csv).rows.size();  // parses: the file is never half-written
+  EXPECT_GE(rows_before, 1u);
+  const test::CommandResult resumed = test::run_sdfbench(kSweep + " --csv " + csv.string() + " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  const CsvTable done = read_csv(csv);
+  EXPECT_EQ(done.rows.size(), 4u);
+  EXPECT_EQ(configuration_keys(done).size(), 4u);
+  if (rows_before < 4) EXPECT_NE(resumed.output.find("already in"), std::string::npos) << resumed.output;
+}
+
+TEST(TableCommand, BadArgumentsAreClearErrors) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"table --table 6.4", "--table '6.4'"},
+      {"table --meshes cube", "not a thesis mesh"},
+      {"table --objects 1,x", "--objects"},
+      {"table --backends embree,raytracer", "unknown backend"},
+      {"table --shard 3/2", "--shard"},
+      {"table --size 0x10 --backends embree", "--size"},
+      {"sweep --scene thesis:sphere:1 --backend embree", "SDF structures"},
+      {"sweep --scene thesis:sphere:1 --backend sdf-cpu --hash-cell 0", "hash"},
+  };
+  for (const auto& [args, words] : cases) {
+    const test::CommandResult r = test::run_sdfbench(args);
+    EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(words), std::string::npos) << args << "\n" << r.output;
+  }
+}
+
+}  // namespace
+}  // namespace sdfbench
