@@ -5,6 +5,7 @@
 
 #include "renderers/embree/embree_renderer.h"
 #include "renderers/sdf/sdf_cpu_renderer.h"
+#include "renderers/sdf_vk/sdf_vk_renderer.h"
 #include "renderers/tri_aabb/tri_aabb_renderer.h"
 #include "scenes/error.h"
 
@@ -27,13 +28,14 @@ std::string to_string(RenderMode mode) {
 }
 
 const std::vector<std::string>& backend_names() {
-  static const std::vector<std::string> names = {"embree", "tri-aabb", "sdf-cpu"};
+  static const std::vector<std::string> names = {"embree", "tri-aabb", "sdf-hash", "sdf-octree", "sdf-cpu"};
   return names;
 }
 
 std::unique_ptr<Renderer> create_renderer(const std::string& name, const BackendOptions& options) {
   if (name == "embree") return std::make_unique<EmbreeRenderer>(options);
   if (name == "tri-aabb") return std::make_unique<TriAabbRenderer>(options);
+  if (name == "sdf-hash" || name == "sdf-octree") return std::make_unique<SdfVkRenderer>(name, options);
   if (name == "sdf-cpu") return std::make_unique<SdfCpuRenderer>(options);
   std::string known;
   for (const std::string& n : backend_names()) known += (known.empty() ? "" : ", ") + n;

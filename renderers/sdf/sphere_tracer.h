@@ -11,7 +11,7 @@ namespace sdfbench::sdf {
 
 struct SphereTraceParams {
   uint32_t max_steps = 512;
-  float hit_epsilon = 2e-5f;  // hit when the distance drops below this x the scene scale
+  float hit_epsilon = 5e-6f;  // hit when the distance drops below this x the scene scale (2e-5 left ~1 % silhouette false hits)
 };
 
 class SphereTracer {

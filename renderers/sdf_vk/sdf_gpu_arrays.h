@@ -1,0 +1,34 @@
+#pragma once
+// The SDF structures (mesh distance grids, scene hash + octrees) flattened into the arrays the
+// sdf-hash / sdf-octree kernels read; the layout is documented in sdf_layout.glsl.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "renderers/sdf/scene_hash.h"
+#include "renderers/sdf/sphere_tracer.h"
+#include "scenes/scene.h"
+
+namespace sdfbench {
+namespace shading {
+using namespace glm;
+#include "sdf_layout.glsl"
+}  // namespace shading
+
+struct SdfGpuArrays {
+  shading::SdfParams params;
+  std::vector<uint32_t> hash_cells;      // node word per hash cell
+  std::vector<uint32_t> octree_nodes;    // node words below the roots
+  std::vector<uint32_t> instance_lists;  // per leaf: count, then instances
+  std::vector<glm::uvec4> instance_records, mesh_records;
+  std::vector<glm::uvec2> grid_cells;    // (begin, end) into grid_triangles
+  std::vector<uint32_t> grid_triangles;  // global triangle indices, each cell's nearest first
+  std::vector<glm::vec4> vertices, normals;  // 3 per global triangle
+  std::vector<glm::vec4> spheres;            // per global triangle: bounding sphere (centre, radius)
+};
+
+// Throws Error when an index would not fit the 31-bit node words.
+SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const sdf::SphereTraceParams& tracing);
+
+}  // namespace sdfbench

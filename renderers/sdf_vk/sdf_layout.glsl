@@ -1,0 +1,38 @@
+// How the sdf-hash / sdf-octree kernels see the SDF structures, shared by GLSL and C++.
+// The large arrays live in texel buffers (lavapipe serves divergent texel fetches ~12x faster
+// than divergent storage-buffer reads, DESIGN.md); records that mix integers and floats are
+// RGBA32UI texels holding float bits, so no float conversion can touch the integers.
+#ifndef SDFBENCH_SDF_LAYOUT_GLSL
+#define SDFBENCH_SDF_LAYOUT_GLSL
+
+// Uniform block: the scene hash grid and the sphere-tracing parameters.
+struct SdfParams {
+  vec4 hash_origin;  // xyz: min corner of the hash box, w: hash cell size
+  uvec4 hash_dims;   // xyz: cells per axis, w: max sphere-tracing steps
+  vec4 tracing;      // x: hit epsilon in world units (hit_epsilon x scene scale)
+};
+
+// A node word, the same in the hash-cell table (each cell's octree root) and the octree-node
+// table: with SDF_LEAF_BIT set, the low 31 bits are the offset of the leaf's instance list
+// (its length, then the instance indices); clear, the word is the index of the node's 8
+// children (octant bit 0: +x, 1: +y, 2: +z). A hash-only structure is a leaf per cell; eight
+// sibling leaves with the same list are stored as their parent, a leaf.
+#define SDF_LEAF_BIT 0x80000000u
+
+// Instance record, SDF_INSTANCE_TEXELS RGBA32UI texels (floats as bits): (world AABB min,
+// mesh); (world AABB max, scale); world_to_object rows 0-2; object_to_world rows 0-2 with the
+// material in the first row's w (only the 3x3 part turns normals). The AABB comes first: most
+// listed instances are rejected by it before their transform is read.
+#define SDF_INSTANCE_TEXELS 8
+
+// Mesh record, SDF_MESH_TEXELS RGBA32UI texels: (grid origin xyz, cell size) as float bits;
+// (grid dims xyz, first grid cell); (mesh bounds min xyz as float bits, first triangle);
+// (mesh bounds max xyz as float bits, 0). A grid cell is an RG32UI texel (begin, end) into the
+// triangle-list table, each cell's list nearest to the cell centre first. Triangle indices
+// there are global (the meshes' triangles concatenated) and index the vertex and normal tables
+// (3 RGBA32F texels per triangle) and the bounding-sphere table (1 per triangle).
+#define SDF_MESH_TEXELS 4
+
+#define SDF_NONE 0xffffffffu
+
+#endif

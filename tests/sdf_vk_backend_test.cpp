@@ -1,0 +1,75 @@
+// The Vulkan SDF backends (sdf-hash, sdf-octree): they draw what Embree draws, run clean under
+// the validation layer, and trace exactly what the CPU reference sphere tracer (sdf-cpu) traces.
+#include <gtest/gtest.h>
+
+#include "harness/image_agreement.h"
+#include "renderers/renderer.h"
+#include "renderers/shading/gpu_types.h"
+#include "scenes/thesis_layout.h"
+
+namespace sdfbench {
+namespace {
+
+constexpr RenderMode kModes[] = {RenderMode::Primary, RenderMode::Shadow};
+
+class SdfVkVsEmbree : public testing::TestWithParam<const char*> {};
+
+TEST_P(SdfVkVsEmbree, ImagesAgreeUnderValidation) {
+  const Scene scene = make_thesis_scene({"bunny", 300, 1});
+  auto reference = create_renderer("embree", BackendOptions{});
+  reference->prepare(scene);
+  BackendOptions options;
+  options.validation = true;
+  auto renderer = create_renderer(GetParam(), options);
+  renderer->prepare(scene);
+  for (RenderMode mode : kModes) {
+    SCOPED_TRACE(to_string(mode));
+    const FrameImages expected = reference->render(FrameRequest{96, 54, mode, true}).images;
+    const FrameResult result = renderer->render(FrameRequest{96, 54, mode, true});
+    size_t instance_pixels = 0;
+    for (uint32_t id : result.images.instance_id) instance_pixels += id < shading::FLOOR_INSTANCE_VALUE;
+    EXPECT_GT(instance_pixels, 400u);  // enough instance pixels for a meaningful id %
+    const Agreement g = compare_frames(result.images, expected);
+    EXPECT_GE(g.hit_percent, 99.5);
+    EXPECT_GE(g.id_percent, 99.0);
+    EXPECT_LE(g.depth_p99, 1e-3);
+    EXPECT_GE(g.psnr, 30.0);
+  }
+  EXPECT_EQ(renderer->validation_messages(), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, SdfVkVsEmbree, testing::Values("sdf-hash", "sdf-octree"), [](const auto& info) {
+  std::string name = info.param;
+  name.erase(name.find('-'), 1);
+  return name;
+});
+
+// Same algorithm as the CPU sphere tracer: the same hits (ids and triangles) wherever it hits.
+// The exact lists make the distance field independent of hash cell and octree, so even
+// sdf-hash (cell 1, no octree) must match sdf-cpu (cell 10, depth 4).
+TEST(SdfVkVsCpu, SameHitsAsTheCpuSphereTracer) {
+  const Scene scene = make_thesis_scene({"teapot", 20, 3});
+  auto cpu = create_renderer("sdf-cpu", BackendOptions{});
+  cpu->prepare(scene);
+  for (const char* backend : {"sdf-hash", "sdf-octree"}) {
+    auto gpu = create_renderer(backend, BackendOptions{});
+    gpu->prepare(scene);
+    for (RenderMode mode : kModes) {
+      const FrameImages expected = cpu->render(FrameRequest{64, 36, mode, true}).images;
+      const FrameImages images = gpu->render(FrameRequest{64, 36, mode, true}).images;
+      size_t same_id = 0, same_prim = 0;
+      for (size_t i = 0; i < images.instance_id.size(); ++i) {
+        same_id += images.instance_id[i] == expected.instance_id[i];
+        same_prim += images.primitive_id[i] == expected.primitive_id[i];
+      }
+      // Float contraction may differ between glslang/LLVM and the C++ compiler: a pixel or two.
+      const size_t pixels = images.instance_id.size();
+      EXPECT_GE(same_id, pixels - 2) << backend << " " << to_string(mode);
+      EXPECT_GE(same_prim, pixels - 2) << backend << " " << to_string(mode);
+      EXPECT_GE(compare_frames(images, expected).psnr, 40.0) << backend << " " << to_string(mode);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sdfbench
