@@ -104,6 +104,9 @@ void register_compare_command(CLI::App& app) {
   cmd->add_option("--min-id", args->thresholds.min_id_percent,
                   "minimum instance-id agreement, % of pixels where either image hit an instance")
       ->capture_default_str()->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--max-id-mismatches", args->thresholds.max_id_mismatches,
+                  "--min-id passes anyway when at most this many pixels differ (tiny objects)")
+      ->capture_default_str();
   cmd->add_option("--max-depth-error", args->thresholds.max_depth_p99,
                   "maximum 99th percentile of relative depth error where both hit the same instance")
       ->capture_default_str()->check(CLI::NonNegativeNumber);

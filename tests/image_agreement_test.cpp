@@ -50,6 +50,23 @@ TEST(ImageAgreement, CountsMaskIdDepthAndColourDifferences) {
   EXPECT_NE(failed.find("depth"), std::string::npos);
 }
 
+// A tiny object: one wrong pixel out of 50 is 98 % id agreement, passing only through the
+// pixel allowance; three wrong pixels fail.
+TEST(ImageAgreement, IdThresholdAllowsAFewPixelsOnTinyObjects) {
+  FrameImages ref = flat_frame(10, 10, shading::NO_INSTANCE_VALUE);
+  for (int i = 0; i < 50; ++i) ref.instance_id[i] = 3;
+  FrameImages test = ref;
+  test.instance_id[0] = 7;
+  Agreement g = compare_frames(test, ref);
+  EXPECT_DOUBLE_EQ(g.id_percent, 98.0);
+  EXPECT_EQ(g.id_mismatches, 1u);
+  EXPECT_EQ(check_thresholds(g, AgreementThresholds{}), "");
+  test.instance_id[1] = test.instance_id[2] = 7;
+  g = compare_frames(test, ref);
+  EXPECT_EQ(g.id_mismatches, 3u);
+  EXPECT_NE(check_thresholds(g, AgreementThresholds{}).find("instance-id"), std::string::npos);
+}
+
 TEST(ImageAgreement, FloorAndSkyAreNotInstanceHits) {
   const FrameImages ref = flat_frame(4, 4, shading::FLOOR_INSTANCE_VALUE);
   const FrameImages test = flat_frame(4, 4, shading::NO_INSTANCE_VALUE);
