@@ -1,17 +1,18 @@
 #!/usr/bin/env bash
 # The README's first command: install dependencies, build, and run the main job on the
-# default device (lavapipe): list devices, render the thesis bunny scene with every backend
-# and check that their images agree. Outputs go to out/.
+# default device (lavapipe): list devices, the quick thesis tables (every backend, images
+# checked against Embree), their plots, and one image per backend. Outputs go to out/.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 harness/scripts/install_deps.sh
 harness/scripts/build.sh
-mkdir -p out
+mkdir -p out/plots
 sdfbench=build/sdfbench
 $sdfbench info
-for backend in embree tri-aabb; do
-  $sdfbench render --scene thesis:bunny:100 --backend "$backend" --mode shadow --size 320x180 \
-    --out "out/bunny100_$backend.png" --aov "out/bunny100_$backend.exr"
+$sdfbench table --quick --csv out/quick.csv --markdown out/quick.md
+harness/scripts/plot_results.py out/quick.csv --out-dir out/plots
+for backend in embree tri-aabb sdf-hash sdf-octree; do
+  $sdfbench render --scene thesis:bunny:100 --backend "$backend" --mode shadow --size 320x180 --frames 1 \
+    --out "out/bunny100_$backend.png"
 done
-$sdfbench compare --scene thesis:bunny:100 --backends embree,tri-aabb --mode shadow --size 320x180 --out-dir out
-echo "quickstart: images in out/"
+echo "quickstart: tables in out/quick.md (CSV out/quick.csv), plots in out/plots/, images in out/"
