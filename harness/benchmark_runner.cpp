@@ -62,12 +62,12 @@ const Scene& BenchmarkRunner::scene(const std::string& spec) {
 }
 
 const FrameImages& BenchmarkRunner::reference(const BenchConfig& config) {
-  const std::string key = to_string(config.mode);
+  const std::string key = to_string(config.mode) + " " + std::to_string(config.max_depth);
   auto it = references_.find(key);
   if (it != references_.end()) return it->second;
   std::unique_ptr<Renderer> renderer = create_renderer(settings_.reference, config.options);
   renderer->prepare(scene(config.scene));
-  FrameRequest request{settings_.check_size.width, settings_.check_size.height, config.mode, true};
+  FrameRequest request{settings_.check_size.width, settings_.check_size.height, config.mode, true, config.max_depth};
   return references_.emplace(key, std::move(renderer->render(request).images)).first->second;
 }
 
@@ -90,7 +90,7 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   const Clock::time_point start = Clock::now();
   const double budget = settings_.budget_s;
   auto room_for_another = [&](double last_ms) { return seconds_since(start) + last_ms / 1e3 <= budget; };
-  FrameRequest request{config.size.width, config.size.height, config.mode, false};
+  FrameRequest request{config.size.width, config.size.height, config.mode, false, config.max_depth};
   std::vector<FrameResult> timed;
   FrameResult last;
   bool rendered = false;
@@ -121,7 +121,7 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   if (config.backend == settings_.reference) {
     m.agreement = "reference";
   } else {
-    const FrameRequest check{settings_.check_size.width, settings_.check_size.height, config.mode, true};
+    const FrameRequest check{settings_.check_size.width, settings_.check_size.height, config.mode, true, config.max_depth};
     const FrameImages images = renderer->render(check).images;
     const Agreement g = compare_frames(images, reference(config));
     m.hit_agreement = g.hit_percent;

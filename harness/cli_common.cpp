@@ -3,6 +3,7 @@
 #include <charconv>
 #include <map>
 
+#include "renderers/shading/gpu_types.h"
 #include "scenes/error.h"
 
 namespace sdfbench {
@@ -68,11 +69,22 @@ void add_structure_options(CLI::App& command, BackendOptions& options) {
       ->capture_default_str()->check(CLI::PositiveNumber)->group(group);
 }
 
+void add_mode_options(CLI::App& command, std::string& mode, std::optional<uint32_t>& max_depth) {
+  command.add_option("--mode", mode, "primary | shadow | whitted")->capture_default_str();
+  command.add_option("--max-depth", max_depth,
+                     "whitted: deepest reflection/refraction bounce (default: the scene's render.max_depth)")
+      ->check(CLI::Range(0u, MAX_DEPTH_LIMIT));
+}
+
 RenderMode parse_mode_option(const std::string& text) {
   const auto mode = parse_render_mode(text);
-  if (!mode || *mode == RenderMode::Whitted)
-    throw Error("--mode '" + text + "': expected primary or shadow (whitted is not implemented yet)");
+  if (!mode) throw Error("--mode '" + text + "': expected primary, shadow or whitted");
   return *mode;
+}
+
+std::string describe_mode(const FrameRequest& request, const Scene& scene) {
+  if (request.mode != RenderMode::Whitted) return to_string(request.mode);
+  return "whitted (max depth " + std::to_string(request.max_depth.value_or(scene.render.max_depth)) + ")";
 }
 
 ImageSize frame_size(const std::string& size_option, const Scene& scene) {

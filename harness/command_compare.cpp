@@ -16,6 +16,7 @@ namespace {
 
 struct CompareArgs {
   std::string scene, backends, reference = "embree", mode = "primary", size, out_dir;
+  std::optional<uint32_t> max_depth;
   AgreementThresholds thresholds;
   BackendOptions backend_options;
 };
@@ -54,9 +55,9 @@ void run_compare(const CompareArgs& args) {
 
   const Scene scene = load_scene(args.scene);
   const ImageSize size = frame_size(args.size, scene);
-  const FrameRequest request{size.width, size.height, mode, true};
+  const FrameRequest request{size.width, size.height, mode, true, args.max_depth};
   std::cout << "scene      " << describe_scene(scene) << "\n"
-            << "frame      " << to_string(mode) << ", " << size.width << "x" << size.height << "\n"
+            << "frame      " << describe_mode(request, scene) << ", " << size.width << "x" << size.height << "\n"
             << "reference  " << args.reference << "\n\n";
 
   std::string device;
@@ -96,7 +97,7 @@ void register_compare_command(CLI::App& app) {
   cmd->add_option("--scene", args->scene, "scene descriptor (.json) or generator, e.g. thesis:bunny:100")->required();
   cmd->add_option("--backends", args->backends, "comma-separated backends, e.g. embree,tri-aabb")->required();
   cmd->add_option("--reference", args->reference, "backend the others are compared with")->capture_default_str();
-  cmd->add_option("--mode", args->mode, "primary | shadow")->capture_default_str();
+  add_mode_options(*cmd, args->mode, args->max_depth);
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT (default: the scene's render size)");
   cmd->add_option("--out-dir", args->out_dir, "also write each backend's image as DIR/<backend>.png");
   cmd->add_option("--min-hit", args->thresholds.min_hit_percent, "minimum hit-mask agreement, % of pixels")

@@ -15,6 +15,7 @@ namespace {
 
 struct RenderArgs {
   std::string scene, backend, mode = "primary", size, out, aov;
+  std::optional<uint32_t> max_depth;
   unsigned frames = 5, warmup = 1;
   BackendOptions backend_options;
 };
@@ -28,14 +29,14 @@ void run_render(const RenderArgs& args) {
 
   std::unique_ptr<Renderer> renderer = create_renderer(args.backend, args.backend_options);
   renderer->prepare(scene);
+  FrameRequest request{size.width, size.height, mode, false, args.max_depth};
   std::cout << "scene    " << describe_scene(scene) << "\n"
             << "backend  " << renderer->name() << " on " << renderer->device_name() << " [" << renderer->driver_name()
             << "]\n"
-            << "frame    " << to_string(mode) << ", " << size.width << "x" << size.height << ", " << args.warmup
-            << " warm-up + " << args.frames << " timed frames\n"
+            << "frame    " << describe_mode(request, scene) << ", " << size.width << "x" << size.height << ", "
+            << args.warmup << " warm-up + " << args.frames << " timed frames\n"
             << std::flush;
 
-  FrameRequest request{size.width, size.height, mode, false};
   for (unsigned i = 0; i < args.warmup; ++i) renderer->render(request);
   std::vector<FrameResult> timed;
   for (unsigned i = 0; i < args.frames; ++i) {
@@ -70,7 +71,7 @@ void register_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "Render a scene with one backend; print timings, write image and AOVs");
   cmd->add_option("--scene", args->scene, "scene descriptor (.json) or generator, e.g. thesis:bunny:100[:seed]")->required();
   cmd->add_option("--backend", args->backend, "embree | tri-aabb | sdf-cpu")->required();
-  cmd->add_option("--mode", args->mode, "primary | shadow")->capture_default_str();
+  add_mode_options(*cmd, args->mode, args->max_depth);
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT (default: the scene's render size)");
   cmd->add_option("--frames", args->frames, "timed frames")->capture_default_str()->check(CLI::Range(1u, 100000u));
   cmd->add_option("--warmup", args->warmup, "untimed warm-up frames")->capture_default_str()->check(CLI::Range(0u, 100000u));

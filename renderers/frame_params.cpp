@@ -33,13 +33,18 @@ ShadingInputs make_shading_inputs(const Scene& scene, const FrameRequest& reques
   f.tracing = vec4(1e-4f * scale, scene.ambient, 100.0f * scale, 0.0f);
   f.image = glm::uvec4(request.width, request.height, static_cast<uint32_t>(request.mode),
                        static_cast<uint32_t>(scene.lights.size()));
-  f.limits = glm::uvec4(scene.render.max_depth, 0u, 0u, 0u);
+  f.limits = glm::uvec4(request.max_depth.value_or(scene.render.max_depth), 0u, 0u, 0u);
 
   for (const Material& m : scene.materials) {
     shading::GpuMaterial g{};
     g.albedo = vec4(m.albedo, m.checker_size);
     g.checker_albedo = vec4(m.checker_albedo, 0.0f);
     g.optics = vec4(m.reflectance, m.transmission, m.ior, 0.0f);
+    if (m.texture != Material::kNoTexture) {
+      const Texture& t = scene.textures[m.texture];
+      g.checker_albedo.w = m.texture_size;
+      g.image_texture = glm::uvec4(t.first_texel, t.width, t.height, 0u);
+    }
     in.materials.push_back(g);
   }
   for (const Light& l : scene.lights) {

@@ -43,6 +43,7 @@ struct FrameRequest {
   uint32_t height = 0;
   RenderMode mode = RenderMode::Primary;
   bool readback = true;  // false for timed frames whose pixels are not looked at
+  std::optional<uint32_t> max_depth;  // whitted recursion limit (--max-depth); unset: render.max_depth
 };
 
 // Image and AOVs of the primary rays, row-major, top row first.

@@ -1,6 +1,7 @@
 #pragma once
 // The scene descriptor every backend consumes (scenes/README.md documents the JSON form).
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,10 @@ struct Material {
   // alternating albedo and checker_albedo. checker_size 0 disables it.
   float checker_size = 0.0f;
   glm::vec3 checker_albedo{0.2f};
+  // Image texture multiplying the albedo, one image repeat per texture_size uv units.
+  static constexpr uint32_t kNoTexture = 0xffffffffu;
+  uint32_t texture = kNoTexture;  // index into Scene::textures
+  float texture_size = 1.0f;
   float reflectance = 0.0f;   // mirror weight, used by whitted mode
   float transmission = 0.0f;  // refraction weight, used by whitted mode
   float ior = 1.5f;
@@ -72,10 +77,19 @@ struct RenderDefaults {
   uint32_t max_depth = 4;
 };
 
+// An image file decoded to linear RGBA; its texels are a slice of Scene::texels.
+struct Texture {
+  std::filesystem::path source;
+  uint32_t first_texel = 0;
+  uint32_t width = 0, height = 0;  // row-major, top row first
+};
+
 struct Scene {
   std::string name;  // the descriptor path or generator spec it came from
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<glm::vec4> texels;  // every texture's texels, concatenated
   std::vector<Instance> instances;
   std::vector<Light> lights;
   Camera camera;

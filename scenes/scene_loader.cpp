@@ -4,6 +4,7 @@
 #include <map>
 #include <sstream>
 
+#include <OpenImageIO/imageio.h>
 #include <glm/gtc/quaternion.hpp>
 
 #include "scenes/error.h"
@@ -24,8 +25,32 @@ uint32_t lookup(const JsonField& field, const std::map<std::string, uint32_t>& n
   field.fail("unknown " + std::string(section) + " '" + name + "' (declared: " + (known.empty() ? "none" : known) + ")");
 }
 
-Material parse_material(const JsonField& f, const std::string& name) {
-  f.expect_object({"albedo", "checker", "reflectance", "transmission", "ior"});
+// Decodes an image into Scene::texels as linear RGBA: integer formats are display-encoded, so
+// gamma 2.2 is undone (the inverse of the image encoding); float formats are taken as linear.
+// Grey images fill rgb; alpha is ignored.
+Texture load_texture(const JsonField& field, const std::filesystem::path& path, Scene& scene) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) field.fail("cannot read image '" + path.string() + "': " + OIIO::geterror());
+  const OIIO::ImageSpec spec = in->spec();
+  if (spec.width < 1 || spec.height < 1 || spec.width > 16384 || spec.height > 16384 || spec.depth > 1)
+    field.fail("image '" + path.string() + "' must be 2D with sides between 1 and 16384");
+  const int channels = spec.nchannels;
+  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * channels);
+  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
+    field.fail("cannot read image '" + path.string() + "': " + in->geterror());
+  const bool linear = spec.format.is_floating_point();
+  Texture texture{path, static_cast<uint32_t>(scene.texels.size()), static_cast<uint32_t>(spec.width),
+                  static_cast<uint32_t>(spec.height)};
+  for (size_t i = 0; i < pixels.size(); i += channels) {
+    glm::vec3 rgb = channels > 2 ? glm::vec3(pixels[i], pixels[i + 1], pixels[i + 2]) : glm::vec3(pixels[i]);
+    if (!linear) rgb = glm::pow(glm::max(rgb, 0.0f), glm::vec3(2.2f));
+    scene.texels.emplace_back(rgb, 1.0f);
+  }
+  return texture;
+}
+
+Material parse_material(const JsonField& f, const std::string& name, const std::filesystem::path& base, Scene& scene) {
+  f.expect_object({"albedo", "checker", "texture", "reflectance", "transmission", "ior"});
   Material m;
   m.name = name;
   if (f.has("albedo")) m.albedo = f.at("albedo").color();
@@ -34,6 +59,16 @@ Material parse_material(const JsonField& f, const std::string& name) {
     c.expect_object({"size", "albedo"});
     m.checker_size = c.at("size").positive();
     if (c.has("albedo")) m.checker_albedo = c.at("albedo").color();
+  }
+  if (f.has("texture")) {
+    const JsonField t = f.at("texture");
+    t.expect_object({"file", "size"});
+    std::filesystem::path path = t.at("file").string();
+    if (path.is_relative()) path = base / path;
+    if (t.has("size")) m.texture_size = t.at("size").positive();
+    for (m.texture = 0; m.texture < scene.textures.size(); ++m.texture)  // one copy per image file
+      if (scene.textures[m.texture].source == path) break;
+    if (m.texture == scene.textures.size()) scene.textures.push_back(load_texture(t.at("file"), path, scene));
   }
   if (f.has("reflectance")) m.reflectance = f.at("reflectance").number_in(0.0f, 1.0f);
   if (f.has("transmission")) m.transmission = f.at("transmission").number_in(0.0f, 1.0f);
@@ -137,7 +172,8 @@ Scene parse_scene_json(const std::string& text, const std::filesystem::path& ori
     const JsonField materials = root.at("materials");
     if (!materials.raw().is_object()) materials.fail("expected an object of named materials");
     for (auto it = materials.raw().begin(); it != materials.raw().end(); ++it) {
-      scene.materials.push_back(parse_material(JsonField(it.value(), "materials." + it.key(), file), it.key()));
+      const JsonField material(it.value(), "materials." + it.key(), file);
+      scene.materials.push_back(parse_material(material, it.key(), base, scene));
       material_ids[it.key()] = static_cast<uint32_t>(scene.materials.size() - 1);
     }
   }

@@ -220,7 +220,9 @@ TEST(SweepCommand, KilledRunLeavesAValidCsvThatResumeCompletes) {
   const CsvTable done = read_csv(csv);
   EXPECT_EQ(done.rows.size(), 4u);
   EXPECT_EQ(configuration_keys(done).size(), 4u);
-  if (rows_before < 4) EXPECT_NE(resumed.output.find("already in"), std::string::npos) << resumed.output;
+  if (rows_before < 4) {
+    EXPECT_NE(resumed.output.find("already in"), std::string::npos) << resumed.output;
+  }
 }
 
 TEST(TableCommand, BadArgumentsAreClearErrors) {

@@ -61,7 +61,9 @@ TEST(SceneHash, ThesisListsAreNeverEmpty) {
   p.lists = sdf::ListRule::Thesis;
   const sdf::SceneSdf sdf = sdf::build_scene_sdf(scene, {}, p);
   for (const sdf::OctreeNode& n : sdf.hash.nodes)
-    if (n.first_child < 0) EXPECT_GT(n.list_count, 0u);
+    if (n.first_child < 0) {
+      EXPECT_GT(n.list_count, 0u);
+    }
 }
 
 struct OctreeLimits {
@@ -88,11 +90,15 @@ TEST_P(OctreeRespects, DepthMinObjectsAndMinSize) {
     } else {
       ++leaves;
       EXPECT_GT(n.list_count, 0u);  // every point has a closest instance
-      if (n.depth < l.depth && size > l.min_size) EXPECT_LE(n.list_count, l.min_objects);
+      if (n.depth < l.depth && size > l.min_size) {
+        EXPECT_LE(n.list_count, l.min_objects);
+      }
     }
   }
   EXPECT_GT(leaves, 0u);
-  if (l.depth > 0) EXPECT_GT(interior, 0u);
+  if (l.depth > 0) {
+    EXPECT_GT(interior, 0u);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Limits, OctreeRespects,

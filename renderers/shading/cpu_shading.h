@@ -10,20 +10,37 @@ template <class Tracer>
 class CpuShading {
  public:
   CpuShading(const Tracer& tracer, const FrameParams& frame_params, const GpuMaterial* material_table,
-             const GpuLight* light_table)
-      : tracer_(tracer), frame(frame_params), materials(material_table), lights(light_table) {}
+             const GpuLight* light_table, const vec4* texel_table /* nullptr: no textures */)
+      : tracer_(tracer), frame(frame_params), materials(material_table), lights(light_table), texels(texel_table) {}
 
  private:
   const Tracer& tracer_;
   const FrameParams frame;
   const GpuMaterial* const materials;
   const GpuLight* const lights;
+  const vec4* const texels;
+  PathEntry stack[STACK_SIZE];  // the ray stack of the pixel being shaded
 
   bool closest_hit(Ray ray, float tmax, Hit& hit) { return tracer_.closest_hit(ray, tmax, hit); }
   bool any_hit(Ray ray, float tmax) { return tracer_.any_hit(ray, tmax); }
+  vec4 texel_at(uint index) const { return texels[index]; }
+  bool has_textures() const { return texels != nullptr; }
+  uint shading_mode() const { return frame.image.z; }
+  PathEntry stack_load(uint i) const { return stack[i]; }
+  void stack_store(uint i, const PathEntry& e) { stack[i] = e; }
 
  public:
 #include "shading.glsl"
+
+  // All of a pixel's rays at once (the Vulkan kernel spreads whitted rays over passes).
+  vec4 shade_pixel(uvec2 pixel, PixelAov& aov) {
+    PixelState s;
+    begin_pixel(s, aov);
+    trace_ray(primary_ray(pixel), s, aov);
+    while (s.counters.x > 0u) trace_ray(pop_ray(s), s, aov);
+    aov.rays = s.counters.y;
+    return pixel_color(s);
+  }
 };
 
 }  // namespace sdfbench::shading

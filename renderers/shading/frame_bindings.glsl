@@ -1,4 +1,4 @@
-// Bindings 0-4, common to every Vulkan backend (filled by VulkanFrameRunner).
+// Bindings 0-5, common to every Vulkan backend (filled by VulkanFrameRunner; 6-7: render_main.glsl).
 #include "shading_types.glsl"
 
 layout(std140, binding = 0) uniform FrameBlock { FrameParams frame; };
@@ -6,3 +6,8 @@ layout(std430, binding = 1) readonly buffer MaterialBlock { GpuMaterial material
 layout(std430, binding = 2) readonly buffer LightBlock { GpuLight lights[]; };
 layout(std430, binding = 3) writeonly buffer ColorBlock { vec4 out_color[]; };
 layout(std430, binding = 4) writeonly buffer AovBlock { GpuAov out_aov[]; };
+layout(binding = 5) uniform samplerBuffer texels;  // image textures, linear RGBA (Scene::texels)
+
+vec4 texel_at(uint index) {
+  return texelFetch(texels, int(index));
+}

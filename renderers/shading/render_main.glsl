@@ -1,20 +1,72 @@
 // Entry point shared by the Vulkan backends. The backend's .comp file declares its own
 // scene bindings (binding >= 8) and closest_hit/any_hit, then includes this file.
+// VulkanFrameRunner compiles it per mode and scene: SHADING_MODE (MODE_*), SHADING_TEXTURES (bool).
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(push_constant) uniform TilePush {
-  uvec4 tile;  // xy: pixel offset of this dispatch's tile
+  uvec4 tile;  // xy: pixel offset of this dispatch's tile; z: whitted pass (0: the first)
 } push;
+
+// whitted, per invocation of a tile: its ray stack and its state between passes; `pending` is
+// raised while any pixel of the tile has rays left.
+layout(std430, binding = 6) buffer StackBlock { PathEntry stacks[]; };
+layout(std430, binding = 7) buffer StateBlock {
+  uint pending;
+  PixelState states[];
+};
+
+uint stack_base;
+
+uint shading_mode() {
+  return SHADING_MODE;
+}
+
+bool has_textures() {
+  return SHADING_TEXTURES;
+}
+
+PathEntry stack_load(uint i) {
+  return stacks[stack_base + i];
+}
+
+void stack_store(uint i, PathEntry e) {
+  stacks[stack_base + i] = e;
+}
 
 #include "shading.glsl"
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy + push.tile.xy;
   if (pixel.x >= frame.image.x || pixel.y >= frame.image.y) return;
-  PixelAov aov;
-  vec4 color = shade_pixel(pixel, aov);
   uint index = pixel.y * frame.image.x + pixel.x;
-  out_color[index] = color;
-  out_aov[index].normal_depth = vec4(aov.normal, aov.depth);
-  out_aov[index].ids = uvec4(aov.instance, aov.prim, aov.rays, 0u);
+  uint slot = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
+  stack_base = slot * STACK_SIZE;
+  bool first = SHADING_MODE != MODE_WHITTED || push.tile.z == 0u;
+  PixelState s;
+  PixelAov aov;
+  PathEntry ray;
+  if (first) {
+    begin_pixel(s, aov);
+    ray = primary_ray(pixel);
+  } else {
+    // whitted traces one ray of the stack per pass: lavapipe (Mesa 22.3) stops every loop of an
+    // invocation once its loops have run 65535 iterations in all, which a ray tree can exceed.
+    s = states[slot];
+    if (s.counters.x == 0u) return;
+    ray = pop_ray(s);
+  }
+  trace_ray(ray, s, aov);
+  if (first) {
+    out_aov[index].normal_depth = vec4(aov.normal, aov.depth);
+    out_aov[index].ids = uvec4(aov.instance, aov.prim, 0u, 0u);
+  }
+  if (SHADING_MODE == MODE_WHITTED) {
+    states[slot] = s;
+    if (s.counters.x > 0u) {
+      pending = 1u;
+      return;
+    }
+  }
+  out_color[index] = pixel_color(s);
+  out_aov[index].ids.z = s.counters.y;
 }

@@ -17,13 +17,20 @@
 #define MODE_SHADOW 1u
 #define MODE_WHITTED 2u
 
+#define MAX_DEPTH_LIMIT 16u  // whitted: deepest secondary ray (render.max_depth, --max-depth)
+#define ENERGY_CUTOFF 1e-3f  // whitted: rays whose weight's largest component is below this are dropped
+// Popping a ray of depth d pushes at most two of depth d + 1 (only when d < max_depth), so the
+// stack never holds more than one pending ray per depth plus the pair just pushed.
+#define STACK_SIZE (MAX_DEPTH_LIMIT + 1u)
+
 #define NO_INSTANCE 0xffffffffu     // the ray escaped to the sky
 #define FLOOR_INSTANCE 0xfffffffeu  // the analytic floor plane, shared by every backend
 
 struct GpuMaterial {
   vec4 albedo;          // rgb albedo; w: checker square size in uv units (0: no checker)
-  vec4 checker_albedo;  // rgb: the checker's second colour
+  vec4 checker_albedo;  // rgb: the checker's second colour; w: image texture repeat in uv units (0: none)
   vec4 optics;          // x: reflectance, y: transmission, z: index of refraction
+  uvec4 image_texture;  // x: first texel in the texel table, y: width, z: height
 };
 
 struct GpuLight {
@@ -41,7 +48,21 @@ struct FrameParams {
   vec4 floor;    // x: height, y: material index, z: 1 when the floor exists
   vec4 tracing;  // x: ray offset epsilon, y: ambient, z: max ray distance
   uvec4 image;   // x: width, y: height, z: mode (MODE_*), w: light count
-  uvec4 limits;  // x: max recursion depth
+  uvec4 limits;  // x: whitted max recursion depth (capped at MAX_DEPTH_LIMIT)
+};
+
+// A ray of the Whitted tree still to be traced.
+struct PathEntry {
+  vec4 origin;  // xyz; w: depth (0: the primary ray)
+  vec4 dir;     // xyz, unit length
+  vec4 weight;  // rgb: the ray's share of the pixel colour
+};
+
+// A pixel's progress besides its ray stack (shading.glsl); the Vulkan kernel keeps both in
+// buffers between whitted passes.
+struct PixelState {
+  vec4 color;      // rgb: radiance gathered so far
+  uvec4 counters;  // x: rays on the stack, y: rays traced
 };
 
 // Per-pixel output written by the kernels: the AOVs of the primary hit.

@@ -1,7 +1,8 @@
 #pragma once
-// What every Vulkan backend shares: the shading inputs (frame, materials, lights), the output
+// What every Vulkan backend shares: the shading inputs (frame, materials, lights, texels), the output
 // image + AOV buffers, tiled dispatch, timestamps and read-back. A backend adds its scene
 // buffers (bindings >= 8) and names its kernel.
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,15 +29,18 @@ class VulkanFrameRunner {
   FrameResult run(const FrameRequest& request);
 
  private:
-  void prepare_outputs(uint32_t width, uint32_t height);
+  void prepare_outputs(uint32_t width, uint32_t height, RenderMode mode);
+  // Records `dispatches` (tile x, y, whitted pass), submits, waits; adds the times to `result`.
+  void submit(const std::vector<glm::uvec4>& dispatches, FrameResult& result);
 
   VulkanContext& context_;
   std::string shader_name_;
-  std::vector<uint32_t> spirv_;
+  std::array<std::vector<uint32_t>, 3> spirv_;  // per RenderMode, compiled on first use
   const Scene* scene_ = nullptr;
   std::vector<KernelBinding> scene_bindings_;
-  GpuBuffer frame_, materials_, lights_, color_, aov_;
+  GpuBuffer frame_, materials_, lights_, texels_, color_, aov_, stacks_, states_;
   uint32_t width_ = 0, height_ = 0;
+  RenderMode mode_ = RenderMode::Primary;
   std::unique_ptr<ComputeKernel> kernel_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
