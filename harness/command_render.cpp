@@ -6,6 +6,7 @@
 #include "harness/cli_common.h"
 #include "harness/commands.h"
 #include "harness/image_output.h"
+#include "harness/structure_view.h"
 #include "harness/timing_stats.h"
 #include "scenes/error.h"
 #include "scenes/scene_source.h"
@@ -14,16 +15,37 @@ namespace sdfbench {
 namespace {
 
 struct RenderArgs {
-  std::string scene, backend, mode = "primary", size, out, aov;
+  std::string scene, backend, mode = "primary", size, out, aov, view;
+  std::vector<uint32_t> view_cell;
   std::optional<uint32_t> max_depth;
   unsigned frames = 5, warmup = 1;
   BackendOptions backend_options;
 };
 
+// The frame with the scene hash (or one hash cell's octree) drawn over it, as thesis figures
+// 6.6-6.7; the structures are the backend's (sdf-hash: cell 1 unless --hash-cell).
+FrameImages structure_view(const RenderArgs& args, const Scene& scene, const FrameRequest& request, const FrameImages& frame) {
+  const sdf::SceneSdf sdf = sdf::obtain_scene_sdf(scene, args.backend_options.mesh_grid,
+                                                  scene_hash_params_for(args.backend, args.backend_options),
+                                                  args.backend_options.cache, std::cerr);
+  const StructureView view = args.view == "hash" ? StructureView::Hash : StructureView::Octree;
+  const glm::uvec3 shown = args.view_cell.empty() ? default_view_cell(frame, scene, request, sdf.hash)
+                                                  : glm::uvec3(args.view_cell[0], args.view_cell[1], args.view_cell[2]);
+  const sdf::SceneHash& h = sdf.hash;
+  std::cout << "view     " << args.view << ": hash " << h.dims.x << "x" << h.dims.y << "x" << h.dims.z << " cells of "
+            << h.cell_size;
+  if (view == StructureView::Octree)
+    std::cout << ", octree of cell " << shown.x << "," << shown.y << "," << shown.z << " (depth <= " << h.params.octree_depth
+              << "; leaves tinted blue = shallow ... red = deepest)";
+  std::cout << "\n";
+  return overlay_structure(frame, scene, request, h, view, shown);
+}
+
 void run_render(const RenderArgs& args) {
   const RenderMode mode = parse_mode_option(args.mode);
   if (!args.out.empty()) check_image_path(args.out, "--out");
   if (!args.aov.empty()) check_image_path(args.aov, "--aov");
+  if (!args.view.empty() && args.out.empty()) throw Error("--view draws over the --out image: give --out");
   const Scene scene = load_scene(args.scene);
   const ImageSize size = frame_size(args.size, scene);
 
@@ -51,7 +73,8 @@ void run_render(const RenderArgs& args) {
   std::printf("rate     %.2f FPS, %.2f Mrays/s (%.2f rays/pixel)\n", t.fps, t.mrays_per_s,
               static_cast<double>(timed.back().rays) / (static_cast<double>(size.width) * size.height));
 
-  const FrameImages& images = timed.back().images;
+  FrameImages images = std::move(timed.back().images);
+  if (!args.view.empty()) images = structure_view(args, scene, request, images);
   if (!args.out.empty()) {
     write_color_image(images, args.out);
     std::cout << "wrote    " << args.out << "\n";
@@ -70,13 +93,17 @@ void register_render_command(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene with one backend; print timings, write image and AOVs");
   cmd->add_option("--scene", args->scene, "scene descriptor (.json) or generator, e.g. thesis:bunny:100[:seed]")->required();
-  cmd->add_option("--backend", args->backend, "embree | tri-aabb | sdf-cpu")->required();
+  cmd->add_option("--backend", args->backend, "embree | tri-aabb | sdf-hash | sdf-octree | sdf-cpu")->required();
   add_mode_options(*cmd, args->mode, args->max_depth);
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT (default: the scene's render size)");
   cmd->add_option("--frames", args->frames, "timed frames")->capture_default_str()->check(CLI::Range(1u, 100000u));
   cmd->add_option("--warmup", args->warmup, "untimed warm-up frames")->capture_default_str()->check(CLI::Range(0u, 100000u));
   cmd->add_option("--out", args->out, "write the shaded image (.png, .exr, ...)");
   cmd->add_option("--aov", args->aov, "write the AOVs as a multi-channel .exr");
+  cmd->add_option("--view", args->view, "draw the SDF structure over the --out image: hash (its cells) or octree (one cell's)")
+      ->check(CLI::IsMember({"hash", "octree"}));
+  cmd->add_option("--view-cell", args->view_cell, "--view octree: the hash cell X,Y,Z (default: the most refined one)")
+      ->delimiter(',')->expected(3);
   add_backend_options(*cmd, args->backend_options);
   cmd->callback([args] { run_render(*args); });
 }

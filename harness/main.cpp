@@ -1,6 +1,7 @@
 // sdfbench: reproduce and extend Menezes 2019 (hierarchical scene SDFs) against triangle
 // ray tracers; see README.md.
 #include <iostream>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -20,10 +21,30 @@ int main(int argc, char** argv) {
   sdfbench::register_table_command(app);
   sdfbench::register_sweep_command(app);
   sdfbench::register_merge_command(app);
+  if (argc > 1 && argv[1][0] != '-') {  // CLI11 would only say "A subcommand is required"
+    std::string known;
+    bool found = false;
+    for (const CLI::App* command : app.get_subcommands({})) {
+      known += (known.empty() ? "" : ", ") + command->get_name();
+      found = found || command->get_name() == argv[1];
+    }
+    if (!found) {
+      std::cerr << "sdfbench: error: unknown command '" << argv[1] << "' (commands: " << known << ")\n";
+      return 1;
+    }
+  }
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // Bad flags are user errors like any other: one line, exit 1 (CLI11's own codes vary).
+    std::cerr << "sdfbench: error: " << e.what() << "\n(run with --help for usage)\n";
+    return 1;
   } catch (const sdfbench::CommandFailed& e) {
     return e.code;
   } catch (const sdfbench::Error& e) {
