@@ -45,7 +45,9 @@ float SphereTracer::march(const shading::Ray& ray, float tmax, SceneDistance& at
       at_hit = d;
       return t;
     }
-    t += std::max(d.distance, 0.0f);
+    // At least epsilon: where the ray enters the box, rounding can leave the point a hair
+    // outside it, and a bound of ~1e-7 would not move t at all (the ray then stalls to a miss).
+    t += std::max(d.distance, epsilon_);
   }
   return -1.0f;
 }

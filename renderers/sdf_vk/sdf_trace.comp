@@ -33,7 +33,9 @@ float march(Ray ray, float tmax, out SceneDistance at_hit) {
       at_hit = d;
       return t;
     }
-    t += max(d.distance, 0.0f);
+    // At least epsilon: where the ray enters the box, rounding can leave the point a hair
+    // outside it, and a bound of ~1e-7 would not move t at all (the ray then stalls to a miss).
+    t += max(d.distance, sdf.tracing.x);
   }
   return -1.0f;
 }
