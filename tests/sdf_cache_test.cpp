@@ -252,16 +252,24 @@ TEST_F(SdfCacheTest, CommandLineBuildWritesAndRenderRefusesCorruptCache) {
   const std::string structure = " --cells-per-extent 8 --hash-cell 20 --octree-depth 2";
   const test::CommandResult build = test::run_sdfbench("build --scene thesis:sphere:10" + structure + " --cache " + path.string());
   ASSERT_EQ(build.exit_code, 0) << build.output;
-  const std::string render = "render --scene thesis:sphere:10 --backend sdf-cpu --size 16x9" + structure + " --cache " + path.string();
-  const test::CommandResult loaded = test::run_sdfbench(render);
-  EXPECT_EQ(loaded.exit_code, 0) << loaded.output;
-  EXPECT_NE(loaded.output.find("build skipped"), std::string::npos) << loaded.output;
-  Bytes bytes = read_all(path);
-  bytes[bytes.size() / 2] ^= std::byte{1};
-  write_all(path, bytes);
-  const test::CommandResult refused = test::run_sdfbench(render);
-  EXPECT_EQ(refused.exit_code, 1) << refused.output;
-  EXPECT_NE(refused.output.find("checksum"), std::string::npos) << refused.output;
+  const Bytes valid = read_all(path);
+  for (const char* backend : {"sdf-cpu", "sdf-octree"}) {  // the CPU reference and the GPU upload path
+    write_all(path, valid);
+    const std::string render = std::string("render --scene thesis:sphere:10 --backend ") + backend + " --size 16x9" +
+                               structure + " --cache " + path.string();
+    const test::CommandResult loaded = test::run_sdfbench(render);
+    EXPECT_EQ(loaded.exit_code, 0) << loaded.output;
+    EXPECT_NE(loaded.output.find("build skipped"), std::string::npos) << loaded.output;
+    Bytes bytes = valid;
+    bytes[bytes.size() / 2] ^= std::byte{1};
+    write_all(path, bytes);
+    const test::CommandResult refused = test::run_sdfbench(render);
+    EXPECT_EQ(refused.exit_code, 1) << refused.output;
+    EXPECT_NE(refused.output.find("checksum"), std::string::npos) << refused.output;
+    const test::CommandResult rebuilt = test::run_sdfbench(render + " --on-bad-cache rebuild");
+    EXPECT_EQ(rebuilt.exit_code, 0) << rebuilt.output;
+    EXPECT_NE(rebuilt.output.find("rebuilding"), std::string::npos) << rebuilt.output;
+  }
   const test::CommandResult missing = test::run_sdfbench("inspect " + (dir_.path() / "nope").string());
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
 }
