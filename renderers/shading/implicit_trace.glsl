@@ -12,9 +12,9 @@ float implicit_distance(uint first, uint count, vec3 p, OUT(uint) prim) {
   uint owner[IMPLICIT_STACK_SIZE];
   uint top = 0u;
   for (uint i = 0u; i < count; ++i) {
-    GpuImplicitNode n = implicit_nodes[first + i];
-    uint kind = n.info.x;
+    uint kind = implicit_nodes[first + i].info.x;  // an operation reads nothing else
     if (kind < IMPLICIT_UNION) {
+      GpuImplicitNode n = implicit_nodes[first + i];
       dist[top] = implicit_primitive_distance(kind, n.a, n.b, implicit_to_local(n, p));
       owner[top] = i;
       top++;
