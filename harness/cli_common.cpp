@@ -93,7 +93,9 @@ ImageSize frame_size(const std::string& size_option, const Scene& scene) {
 }
 
 std::string describe_scene(const Scene& scene) {
-  return scene.name + " (" + std::to_string(scene.instances.size()) + " instances, " +
+  const std::string implicits =
+      scene.implicits.empty() ? "" : std::to_string(scene.implicits.size()) + " implicit objects, ";
+  return scene.name + " (" + std::to_string(scene.instances.size()) + " instances, " + implicits +
          std::to_string(scene.triangle_count()) + " triangles)";
 }
 

@@ -34,7 +34,8 @@ FrameResult render_cpu_frame(const Tracer& tracer, const Scene& scene, const Fra
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range2d<uint32_t>(0, request.height, 16, 0, request.width, 16), [&](const auto& tile) {
       shading::CpuShading<Tracer> program(tracer, inputs.frame, inputs.materials.data(), inputs.lights.data(),
-                                          scene.texels.empty() ? nullptr : scene.texels.data());
+                                          scene.texels.empty() ? nullptr : scene.texels.data(),
+                                          inputs.implicit_objects.data(), inputs.implicit_nodes.data());
       for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
         for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
           const size_t i = static_cast<size_t>(y) * request.width + x;

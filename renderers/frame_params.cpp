@@ -2,10 +2,12 @@
 
 #include <cmath>
 
+#include "renderers/implicit_tables.h"
+
 namespace sdfbench {
 
 float scene_scale(const Scene& scene) {
-  Aabb bounds = scene.instance_bounds();
+  Aabb bounds = scene.bounds();
   bounds.extend(scene.camera.position);
   return std::max(1e-3f, glm::length(bounds.extent()));
 }
@@ -30,10 +32,15 @@ ShadingInputs make_shading_inputs(const Scene& scene, const FrameRequest& reques
   f.sky_horizon = vec4(scene.sky.horizon, 0.0f);
   f.floor = vec4(scene.floor.height, static_cast<float>(scene.floor.material), scene.floor.enabled ? 1.0f : 0.0f, 0.0f);
   // Offsets secondary rays off the surface; relative to the scene so it works at any unit.
-  f.tracing = vec4(1e-4f * scale, scene.ambient, 100.0f * scale, 0.0f);
+  // Implicit objects' hit epsilon (w): far below the offset, so that a ray leaving a surface
+  // starts well outside it; the SDF backends' default hit epsilon, 5e-6 x the scene scale.
+  f.tracing = vec4(1e-4f * scale, scene.ambient, 100.0f * scale, 5e-6f * scale);
   f.image = glm::uvec4(request.width, request.height, static_cast<uint32_t>(request.mode),
                        static_cast<uint32_t>(scene.lights.size()));
-  f.limits = glm::uvec4(request.max_depth.value_or(scene.render.max_depth), 0u, 0u, 0u);
+  ImplicitTables implicits = make_implicit_tables(scene);
+  f.limits = glm::uvec4(request.max_depth.value_or(scene.render.max_depth), implicits.objects.size(), 0u, 0u);
+  in.implicit_objects = std::move(implicits.objects);
+  in.implicit_nodes = std::move(implicits.nodes);
 
   for (const Material& m : scene.materials) {
     shading::GpuMaterial g{};

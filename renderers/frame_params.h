@@ -12,11 +12,13 @@ struct ShadingInputs {
   shading::FrameParams frame;
   std::vector<shading::GpuMaterial> materials;
   std::vector<shading::GpuLight> lights;  // never empty (a zero light is padded; frame counts real ones)
+  std::vector<shading::GpuImplicitObject> implicit_objects;  // frame.limits.y of them
+  std::vector<shading::GpuImplicitNode> implicit_nodes;
 };
 
 ShadingInputs make_shading_inputs(const Scene& scene, const FrameRequest& request);
 
-// Scale of the scene (instances, camera), used to size the ray offset epsilon and tmax.
+// Scale of the scene (instances, implicit objects, camera), used to size the ray offset epsilon and tmax.
 float scene_scale(const Scene& scene);
 
 }  // namespace sdfbench

@@ -86,4 +86,11 @@ glm::vec3 JsonField::color() const {
   return c;
 }
 
+glm::quat JsonField::rotation() const {
+  expect_object({"axis", "degrees"});
+  const glm::vec3 axis = at("axis").vec3();
+  if (glm::length(axis) < 1e-12f) at("axis").fail("rotation axis must not be zero");
+  return glm::angleAxis(glm::radians(at("degrees").number()), glm::normalize(axis));
+}
+
 }  // namespace sdfbench

@@ -5,6 +5,7 @@
 #include <string>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
 namespace sdfbench {
@@ -33,6 +34,7 @@ class JsonField {
   std::string string() const;
   glm::vec3 vec3() const;
   glm::vec3 color() const;  // vec3 with every component >= 0
+  glm::quat rotation() const;  // {axis: non-zero vec3, degrees: number}
 
  private:
   const nlohmann::ordered_json& value_;

@@ -6,10 +6,11 @@
 #include <vector>
 
 #include <glm/glm.hpp>
-#include <glm/gtc/quaternion.hpp>
 
 #include "scenes/aabb.h"
+#include "scenes/implicit.h"
 #include "scenes/mesh.h"
+#include "scenes/transform.h"
 
 namespace sdfbench {
 
@@ -27,16 +28,6 @@ struct Material {
   float reflectance = 0.0f;   // mirror weight, used by whitted mode
   float transmission = 0.0f;  // refraction weight, used by whitted mode
   float ior = 1.5f;
-};
-
-// Rotation, uniform scale and translation only: distances scale back exactly (SDF backends).
-struct Transform {
-  glm::vec3 translation{0.0f};
-  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
-  float scale = 1.0f;
-
-  glm::mat4 object_to_world() const;
-  glm::mat4 world_to_object() const;
 };
 
 struct Instance {
@@ -91,6 +82,9 @@ struct Scene {
   std::vector<Texture> textures;
   std::vector<glm::vec4> texels;  // every texture's texels, concatenated
   std::vector<Instance> instances;
+  // Implicit objects: traced by the shared shading code in every backend; their instance ids
+  // follow the meshes' (instances.size() + index).
+  std::vector<ImplicitObject> implicits;
   std::vector<Light> lights;
   Camera camera;
   Sky sky;
@@ -101,6 +95,8 @@ struct Scene {
   // World-space bounds of every instance (the floor is unbounded and not included).
   Aabb instance_bounds() const;
   Aabb world_bounds(const Instance& instance) const;
+  Aabb world_bounds(const ImplicitObject& object) const;
+  Aabb bounds() const;  // instances and implicit objects
   size_t triangle_count() const;  // over all instances
 };
 

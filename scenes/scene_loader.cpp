@@ -8,6 +8,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "scenes/error.h"
+#include "scenes/implicit_parser.h"
 #include "scenes/json_field.h"
 
 namespace sdfbench {
@@ -81,13 +82,7 @@ Transform parse_transform(const JsonField& f) {
   Transform t;
   if (f.has("translate")) t.translation = f.at("translate").vec3();
   if (f.has("scale")) t.scale = f.at("scale").number_in(1e-6f, 1e6f);
-  if (f.has("rotate")) {
-    const JsonField r = f.at("rotate");
-    r.expect_object({"axis", "degrees"});
-    const glm::vec3 axis = r.at("axis").vec3();
-    if (glm::length(axis) < 1e-12f) r.at("axis").fail("rotation axis must not be zero");
-    t.rotation = glm::angleAxis(glm::radians(r.at("degrees").number()), glm::normalize(axis));
-  }
+  if (f.has("rotate")) t.rotation = f.at("rotate").rotation();
   return t;
 }
 
@@ -136,15 +131,17 @@ Scene parse_scene_json(const std::string& text, const std::filesystem::path& ori
     throw Error(file + ": malformed JSON: " + e.what());
   }
   const JsonField root(doc, "", file);
-  root.expect_object({"meshes", "materials", "instances", "lights", "camera", "sky", "floor", "ambient", "render"});
+  root.expect_object(
+      {"meshes", "materials", "instances", "implicits", "lights", "camera", "sky", "floor", "ambient", "render"});
 
   Scene scene;
   scene.name = file;
   const std::filesystem::path base = origin.parent_path();
 
   std::map<std::string, uint32_t> mesh_ids;
-  const JsonField meshes = root.at("meshes");
-  if (!meshes.raw().is_object() || meshes.raw().empty()) meshes.fail("expected an object of named meshes, e.g. {\"bunny\": {\"builtin\": \"bunny\"}}");
+  const nlohmann::ordered_json no_meshes = nlohmann::ordered_json::object();
+  const JsonField meshes = root.has("meshes") ? root.at("meshes") : JsonField(no_meshes, "meshes", file);
+  if (!meshes.raw().is_object()) meshes.fail("expected an object of named meshes, e.g. {\"bunny\": {\"builtin\": \"bunny\"}}");
   for (auto it = meshes.raw().begin(); it != meshes.raw().end(); ++it) {
     const JsonField m(it.value(), "meshes." + it.key(), file);
     if (!m.raw().is_object()) m.fail("expected an object with \"builtin\" or \"file\"");
@@ -182,9 +179,9 @@ Scene parse_scene_json(const std::string& text, const std::filesystem::path& ori
     material_ids["default"] = 0;
   }
 
-  const JsonField instances = root.at("instances");
+  const nlohmann::ordered_json none = nlohmann::ordered_json::array();
+  const JsonField instances = root.has("instances") ? root.at("instances") : JsonField(none, "instances", file);
   instances.expect_array();
-  if (instances.size() == 0) instances.fail("a scene needs at least one instance");
   for (size_t i = 0; i < instances.size(); ++i) {
     const JsonField f = instances.item(i);
     f.expect_object({"mesh", "material", "translate", "rotate", "scale"});
@@ -194,6 +191,19 @@ Scene parse_scene_json(const std::string& text, const std::filesystem::path& ori
     instance.transform = parse_transform(f);
     scene.instances.push_back(instance);
   }
+  const JsonField implicits = root.has("implicits") ? root.at("implicits") : JsonField(none, "implicits", file);
+  implicits.expect_array();
+  for (size_t i = 0; i < implicits.size(); ++i) {
+    const JsonField f = implicits.item(i);
+    f.expect_object({"shape", "material", "translate", "rotate", "scale"});
+    ImplicitObject object;
+    object.nodes = parse_implicit_shape(f.at("shape"));
+    object.material = f.has("material") ? lookup(f.at("material"), material_ids, "material") : 0;
+    object.transform = parse_transform(f);
+    scene.implicits.push_back(std::move(object));
+  }
+  if (scene.instances.empty() && scene.implicits.empty())
+    (root.has("instances") ? instances : implicits).fail("a scene needs at least one instance or implicit object");
 
   if (root.has("lights")) {
     const JsonField lights = root.at("lights");

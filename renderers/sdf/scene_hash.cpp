@@ -203,7 +203,8 @@ SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGri
   SceneHash hash;
   hash.params = params;
   hash.cell_size = params.hash_cell;
-  const Aabb bounds = scene.instance_bounds();
+  Aabb bounds = scene.instance_bounds();
+  if (bounds.empty()) bounds = Aabb{glm::vec3(0.0f), glm::vec3(0.0f)};  // implicit objects only: one empty cell
   const glm::vec3 extent = bounds.extent();
   const glm::dvec3 cells = glm::max(glm::ceil(glm::dvec3(extent) / static_cast<double>(params.hash_cell)), glm::dvec3(1.0));
   const double total = cells.x * cells.y * cells.z;

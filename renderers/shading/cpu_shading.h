@@ -10,8 +10,15 @@ template <class Tracer>
 class CpuShading {
  public:
   CpuShading(const Tracer& tracer, const FrameParams& frame_params, const GpuMaterial* material_table,
-             const GpuLight* light_table, const vec4* texel_table /* nullptr: no textures */)
-      : tracer_(tracer), frame(frame_params), materials(material_table), lights(light_table), texels(texel_table) {}
+             const GpuLight* light_table, const vec4* texel_table /* nullptr: no textures */,
+             const GpuImplicitObject* implicit_object_table, const GpuImplicitNode* implicit_node_table)
+      : tracer_(tracer),
+        frame(frame_params),
+        materials(material_table),
+        lights(light_table),
+        texels(texel_table),
+        implicit_objects(implicit_object_table),
+        implicit_nodes(implicit_node_table) {}
 
  private:
   const Tracer& tracer_;
@@ -19,12 +26,15 @@ class CpuShading {
   const GpuMaterial* const materials;
   const GpuLight* const lights;
   const vec4* const texels;
+  const GpuImplicitObject* const implicit_objects;  // frame.limits.y of them
+  const GpuImplicitNode* const implicit_nodes;
   PathEntry stack[STACK_SIZE];  // the ray stack of the pixel being shaded
 
   bool closest_hit(Ray ray, float tmax, Hit& hit) { return tracer_.closest_hit(ray, tmax, hit); }
   bool any_hit(Ray ray, float tmax) { return tracer_.any_hit(ray, tmax); }
   vec4 texel_at(uint index) const { return texels[index]; }
   bool has_textures() const { return texels != nullptr; }
+  bool has_implicits() const { return frame.limits.y > 0u; }
   uint shading_mode() const { return frame.image.z; }
   PathEntry stack_load(uint i) const { return stack[i]; }
   void stack_store(uint i, const PathEntry& e) { stack[i] = e; }

@@ -1,4 +1,5 @@
-// Bindings 0-5, common to every Vulkan backend (filled by VulkanFrameRunner; 6-7: render_main.glsl).
+// Bindings 0-5 and 30-31, common to every Vulkan backend (filled by VulkanFrameRunner; 6-7:
+// render_main.glsl). The implicit objects sit at 30-31, clear of the backends' own bindings (8 on).
 #include "shading_types.glsl"
 
 layout(std140, binding = 0) uniform FrameBlock { FrameParams frame; };
@@ -7,6 +8,8 @@ layout(std430, binding = 2) readonly buffer LightBlock { GpuLight lights[]; };
 layout(std430, binding = 3) writeonly buffer ColorBlock { vec4 out_color[]; };
 layout(std430, binding = 4) writeonly buffer AovBlock { GpuAov out_aov[]; };
 layout(binding = 5) uniform samplerBuffer texels;  // image textures, linear RGBA (Scene::texels)
+layout(std430, binding = 30) readonly buffer ImplicitObjectBlock { GpuImplicitObject implicit_objects[]; };
+layout(std430, binding = 31) readonly buffer ImplicitNodeBlock { GpuImplicitNode implicit_nodes[]; };
 
 vec4 texel_at(uint index) {
   return texelFetch(texels, int(index));

@@ -1,10 +1,12 @@
 #pragma once
-// shading_types.glsl seen from C++: buffer layouts, Ray, Hit and the shared constants.
+// shading_types.glsl seen from C++: buffer layouts, Ray, Hit and the shared constants; and the
+// implicit primitives' distance and uv functions (implicit_sdf.glsl).
 #include <glm/glm.hpp>
 
 namespace sdfbench::shading {
 using namespace glm;
 #include "shading_types.glsl"
+#include "implicit_sdf.glsl"
 }  // namespace sdfbench::shading
 
 namespace sdfbench::shading {

@@ -1,6 +1,7 @@
 // Entry point shared by the Vulkan backends. The backend's .comp file declares its own
 // scene bindings (binding >= 8) and closest_hit/any_hit, then includes this file.
-// VulkanFrameRunner compiles it per mode and scene: SHADING_MODE (MODE_*), SHADING_TEXTURES (bool).
+// VulkanFrameRunner compiles it per mode and scene: SHADING_MODE (MODE_*), SHADING_TEXTURES and
+// SHADING_IMPLICITS (bool).
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(push_constant) uniform TilePush {
@@ -23,6 +24,10 @@ uint shading_mode() {
 
 bool has_textures() {
   return SHADING_TEXTURES;
+}
+
+bool has_implicits() {
+  return SHADING_IMPLICITS;
 }
 
 PathEntry stack_load(uint i) {

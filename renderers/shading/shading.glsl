@@ -7,9 +7,13 @@
 // queries
 //   bool closest_hit(Ray ray, float tmax, OUT(Hit) hit)   nearest surface with t in (0, tmax)
 //   bool any_hit(Ray ray, float tmax)                      any surface with t in (0, tmax)
-// The floor is an analytic plane handled here, identically for every backend.
+// The floor is an analytic plane handled here, identically for every backend, and so are the
+// implicit objects (implicit_trace.glsl: `implicit_objects[]`, `implicit_nodes[]` and
+// `bool has_implicits()`, a constant in the Vulkan kernels).
 // A pixel: begin_pixel, trace_ray(primary_ray), then (whitted) trace_ray(pop_ray) while its
 // stack is not empty.
+
+#include "implicit_trace.glsl"
 
 Ray camera_ray(uvec2 pixel) {
   float sx = (float(pixel.x) + 0.5f) / float(frame.image.x) * 2.0f - 1.0f;
@@ -26,6 +30,7 @@ bool floor_hit(Ray ray, float tmax, OUT(float) t) {
 
 bool trace_closest(Ray ray, float tmax, OUT(Hit) hit) {
   bool found = closest_hit(ray, tmax, hit);
+  if (has_implicits() && implicit_closest(ray, found ? hit.t : tmax, hit)) found = true;
   float t;
   if (floor_hit(ray, found ? hit.t : tmax, t)) {
     vec3 p = ray.origin + t * ray.dir;
@@ -42,7 +47,7 @@ bool trace_closest(Ray ray, float tmax, OUT(Hit) hit) {
 
 bool trace_occluded(Ray ray, float tmax) {
   float t;
-  return floor_hit(ray, tmax, t) || any_hit(ray, tmax);
+  return floor_hit(ray, tmax, t) || any_hit(ray, tmax) || (has_implicits() && implicit_occluded(ray, tmax));
 }
 
 vec3 sky_color(vec3 dir) {

@@ -26,6 +26,22 @@
 #define NO_INSTANCE 0xffffffffu     // the ray escaped to the sky
 #define FLOOR_INSTANCE 0xfffffffeu  // the analytic floor plane, shared by every backend
 
+// Implicit objects (thesis 5.1, figure 6.5): a CSG tree per object, flattened to postfix nodes
+// (renderers/implicit_tables.cpp), evaluated by implicit_trace.glsl. Kinds as ImplicitKind in
+// scenes/implicit.h; primitives below IMPLICIT_UNION, binary operations from it on.
+#define IMPLICIT_SPHERE 0u
+#define IMPLICIT_BOX 1u
+#define IMPLICIT_ELLIPSOID 2u
+#define IMPLICIT_CAPSULE 3u
+#define IMPLICIT_TORUS 4u
+#define IMPLICIT_PLANE 5u
+#define IMPLICIT_UNION 6u
+#define IMPLICIT_INTERSECTION 7u
+#define IMPLICIT_SUBTRACTION 8u
+#define IMPLICIT_MAX_NODES 64u    // per object: bounds the evaluation loop (lavapipe's loop budget)
+#define IMPLICIT_STACK_SIZE 8u    // postfix evaluation stack; the loader rejects deeper trees
+#define IMPLICIT_MAX_STEPS 128u   // sphere-tracing steps per object and ray; a ray out of steps misses
+
 struct GpuMaterial {
   vec4 albedo;          // rgb albedo; w: checker square size in uv units (0: no checker)
   vec4 checker_albedo;  // rgb: the checker's second colour; w: image texture repeat in uv units (0: none)
@@ -46,9 +62,32 @@ struct FrameParams {
   vec4 sky_zenith;
   vec4 sky_horizon;
   vec4 floor;    // x: height, y: material index, z: 1 when the floor exists
-  vec4 tracing;  // x: ray offset epsilon, y: ambient, z: max ray distance
+  vec4 tracing;  // x: ray offset epsilon, y: ambient, z: max ray distance, w: implicit hit epsilon
   uvec4 image;   // x: width, y: height, z: mode (MODE_*), w: light count
-  uvec4 limits;  // x: whitted max recursion depth (capped at MAX_DEPTH_LIMIT)
+  uvec4 limits;  // x: whitted max recursion depth (capped at MAX_DEPTH_LIMIT), y: implicit objects
+};
+
+// One CSG node. Primitives are evaluated in their own frame (the node's placement in the object).
+struct GpuImplicitNode {
+  uvec4 info;       // x: kind (IMPLICIT_*)
+  vec4 a;           // primitive parameters, as implicit_sdf.glsl reads them
+  vec4 b;
+  vec4 to_local0;   // object -> primitive frame: rows of a 3x4 affine map
+  vec4 to_local1;
+  vec4 to_local2;
+};
+
+// One implicit object: its node range, transform and object-space bounds.
+struct GpuImplicitObject {
+  vec4 bounds_min;  // object-space box around the shape; w: normal difference step (object units)
+  vec4 bounds_max;  // w: the object's uniform scale (object distance x scale = world distance)
+  vec4 to_object0;  // world -> object: rows of a 3x4 affine map
+  vec4 to_object1;
+  vec4 to_object2;
+  vec4 to_world0;   // object -> world 3x3 (rotation x scale), rows: turns gradients into normals
+  vec4 to_world1;
+  vec4 to_world2;
+  uvec4 info;       // x: first node, y: node count, z: material, w: instance id (after the meshes')
 };
 
 // A ray of the Whitted tree still to be traced.

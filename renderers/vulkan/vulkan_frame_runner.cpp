@@ -56,6 +56,15 @@ void VulkanFrameRunner::set_scene(const Scene& scene, std::vector<KernelBinding>
                       "image texture texels");
   texels_.write(scene.texels.empty() ? &dummy : scene.texels.data(), texel_bytes);
   texels_.texel_view(VK_FORMAT_R32G32B32A32_SFLOAT, sizeof(glm::vec4));
+  // Implicit objects (bindings 30-31); a buffer is never empty (GpuBuffer pads), the count is in the frame.
+  const size_t object_bytes = inputs.implicit_objects.size() * sizeof(shading::GpuImplicitObject);
+  const size_t node_bytes = inputs.implicit_nodes.size() * sizeof(shading::GpuImplicitNode);
+  implicit_objects_ = GpuBuffer(context_, object_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Use::Upload,
+                                "implicit objects");
+  if (object_bytes) implicit_objects_.write(inputs.implicit_objects.data(), object_bytes);
+  implicit_nodes_ = GpuBuffer(context_, node_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Use::Upload,
+                              "implicit nodes");
+  if (node_bytes) implicit_nodes_.write(inputs.implicit_nodes.data(), node_bytes);
   kernel_.reset();
   spirv_ = {};
   width_ = height_ = 0;
@@ -82,15 +91,19 @@ void VulkanFrameRunner::prepare_outputs(uint32_t width, uint32_t height, RenderM
       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frame_},  {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &materials_},
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &lights_}, {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &color_},
       {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &aov_},    {5, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, &texels_},
-      {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &stacks_}, {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &states_}};
+      {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &stacks_}, {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &states_},
+      {30, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &implicit_objects_},
+      {31, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &implicit_nodes_}};
   bindings.insert(bindings.end(), scene_bindings_.begin(), scene_bindings_.end());
-  // One kernel per mode (and textures or not), so that the compiler drops the code a frame
-  // cannot use: on lavapipe, branching on them at run time cost ~80 ms per 720p frame.
+  // One kernel per mode (and textures or not, implicit objects or not), so that the compiler drops
+  // the code a frame cannot use: on lavapipe, branching on them at run time cost ~80 ms per 720p frame.
   std::vector<uint32_t>& spirv = spirv_[static_cast<size_t>(mode)];
   if (spirv.empty())
     spirv = compile_compute_shader(shader_name_, "#define SHADING_MODE " + std::to_string(static_cast<int>(mode)) +
                                                      "u\n#define SHADING_TEXTURES " +
-                                                     (scene_->texels.empty() ? "false" : "true") + "\n");
+                                                     (scene_->texels.empty() ? "false" : "true") +
+                                                     "\n#define SHADING_IMPLICITS " +
+                                                     (scene_->implicits.empty() ? "false" : "true") + "\n");
   kernel_ = std::make_unique<ComputeKernel>(context_, spirv, bindings, static_cast<uint32_t>(sizeof(glm::uvec4)));
   width_ = width;
   height_ = height;

@@ -1,5 +1,6 @@
 #pragma once
-// What every Vulkan backend shares: the shading inputs (frame, materials, lights, texels), the output
+// What every Vulkan backend shares: the shading inputs (frame, materials, lights, texels, implicit
+// objects), the output
 // image + AOV buffers, tiled dispatch, timestamps and read-back. A backend adds its scene
 // buffers (bindings >= 8) and names its kernel.
 #include <array>
@@ -24,7 +25,7 @@ class VulkanFrameRunner {
   VulkanFrameRunner(const VulkanFrameRunner&) = delete;
   VulkanFrameRunner& operator=(const VulkanFrameRunner&) = delete;
 
-  // Keeps the scene for the frame parameters and uploads materials and lights.
+  // Keeps the scene for the frame parameters and uploads materials, lights, texels and implicit objects.
   void set_scene(const Scene& scene, std::vector<KernelBinding> scene_bindings);
   FrameResult run(const FrameRequest& request);
 
@@ -38,7 +39,7 @@ class VulkanFrameRunner {
   std::array<std::vector<uint32_t>, 3> spirv_;  // per RenderMode, compiled on first use
   const Scene* scene_ = nullptr;
   std::vector<KernelBinding> scene_bindings_;
-  GpuBuffer frame_, materials_, lights_, texels_, color_, aov_, stacks_, states_;
+  GpuBuffer frame_, materials_, lights_, texels_, implicit_objects_, implicit_nodes_, color_, aov_, stacks_, states_;
   uint32_t width_ = 0, height_ = 0;
   RenderMode mode_ = RenderMode::Primary;
   std::unique_ptr<ComputeKernel> kernel_;
