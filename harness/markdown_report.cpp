@@ -37,6 +37,7 @@ std::string fps_cell(const Row& r) {
   std::string text = fixed(fps, fps >= 100 ? 0 : fps >= 10 ? 1 : fps >= 1 ? 2 : 3);
   if (r["budget_cut"] == "1") text += " †";
   if (r["agreement"].rfind("DISAGREE", 0) == 0) text += " ✗";
+  if (r["agreement"].rfind("TRUNCATED", 0) == 0) text += " ✂";
   return text;
 }
 
@@ -180,7 +181,8 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
   if (!sweep.empty()) sweep_table(out, sweep);
   if (rows.empty()) out << "(no measurements)\n";
   out << "Flags: ✗ images disagree with the reference (see the CSV's agreement column), † the time budget cut the run "
-         "(fewer frames than asked; a single cold frame when only the warm-up fitted), ERROR the configuration failed.\n";
+         "(fewer frames than asked; a single cold frame when only the warm-up fitted), ✂ lavapipe's loop limit cut pixels "
+         "short (image and FPS invalid; README, \"The loop limit\"), ERROR the configuration failed.\n";
   return out.str();
 }
 

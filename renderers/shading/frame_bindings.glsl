@@ -1,5 +1,7 @@
-// Bindings 0-5, common to every Vulkan backend (filled by VulkanFrameRunner; 6-7: render_main.glsl).
+// Bindings 0-5, common to every Vulkan backend (filled by VulkanFrameRunner; 6-7: render_main.glsl;
+// COUNTERS_BINDING: work_counters.glsl).
 #include "shading_types.glsl"
+#include "work_counters.glsl"
 
 layout(std140, binding = 0) uniform FrameBlock { FrameParams frame; };
 layout(std430, binding = 1) readonly buffer MaterialBlock { GpuMaterial materials[]; };
