@@ -71,7 +71,7 @@ struct SceneDistance {
   uint32_t instance;  // UINT32_MAX outside the hash box
   uint32_t triangle;
   uint32_t evaluations;  // instance distances evaluated
-  // traced_scene_distance() only (sphere_tracer.h): the work behind the distance.
+  // traced_scene_distance() only (traced_distance.h): the work behind the distance.
   uint32_t triangle_evaluations = 0;  // point-triangle distances
   uint32_t box_tests = 0;             // instance boxes tested to skip an instance
 };
