@@ -30,6 +30,8 @@ std::string fixed(double v, int digits) {
   return text;
 }
 
+bool truncated(const Row& r) { return r["agreement"].rfind("TRUNCATED", 0) == 0; }
+
 // FPS with ~3 significant digits, and the row's flags.
 std::string fps_cell(const Row& r) {
   if (r["agreement"].rfind("ERROR", 0) == 0) return "ERROR";
@@ -37,7 +39,7 @@ std::string fps_cell(const Row& r) {
   std::string text = fixed(fps, fps >= 100 ? 0 : fps >= 10 ? 1 : fps >= 1 ? 2 : 3);
   if (r["budget_cut"] == "1") text += " †";
   if (r["agreement"].rfind("DISAGREE", 0) == 0) text += " ✗";
-  if (r["agreement"].rfind("TRUNCATED", 0) == 0) text += " ✂";
+  if (truncated(r)) text += " ✂";
   return text;
 }
 
@@ -109,6 +111,7 @@ void speedup_table(std::ostringstream& out, const std::vector<Row>& sdf, const s
       const Row* b = find_row(tri, mesh, c);
       const auto ta = thesis.find("6.1", mesh, c), tb = thesis.find("6.3", mesh, c);
       std::string cell = a && b && b->number("fps") > 0 ? fixed(a->number("fps") / b->number("fps"), 2) + "x" : "–";
+      if (a && b && (truncated(*a) || truncated(*b))) cell += " ✂";
       if (ta && tb) cell += " (" + fixed(ta->fps / tb->fps, 0) + "x" + (tb->upper_bound ? "+" : "") + ")";
       out << " " << cell << " |";
     }
