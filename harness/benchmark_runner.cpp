@@ -14,8 +14,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-bool is_sdf_backend(const std::string& backend) { return backend.rfind("sdf-", 0) == 0; }
-
 // "bunny" for a thesis scene, else its distinct meshes joined with '+'; triangles of those meshes.
 std::pair<std::string, size_t> mesh_summary(const Scene& scene) {
   std::set<uint32_t> used;
@@ -116,20 +114,35 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   m.mrays_per_s = t.mrays_per_s;
   m.rays_per_pixel = static_cast<double>(timed.back().rays) / (static_cast<double>(m.width) * m.height);
 
-  // Agreement at the check size (a separate, untimed frame).
+  // Agreement and work counters at the check size: one untimed, instrumented frame (the
+  // counters change no pixel).
   m.check_size = std::to_string(settings_.check_size.width) + "x" + std::to_string(settings_.check_size.height);
+  const FrameRequest check{settings_.check_size.width, settings_.check_size.height, config.mode, true, config.max_depth, true};
+  const FrameResult checked = renderer->render(check);
+  auto per_ray = [&](uint32_t kind) -> std::optional<double> {
+    if (!checked.counters[kind] || checked.rays == 0) return std::nullopt;
+    return static_cast<double>(*checked.counters[kind]) / static_cast<double>(checked.rays);
+  };
+  m.steps_per_ray = per_ray(COUNTER_STEPS);
+  m.instance_evals_per_ray = per_ray(COUNTER_INSTANCE_EVALS);
+  m.triangle_evals_per_ray = per_ray(COUNTER_TRIANGLE_EVALS);
+  m.aabb_tests_per_ray = per_ray(COUNTER_AABB_TESTS);
+  m.triangle_tests_per_ray = per_ray(COUNTER_TRIANGLE_TESTS);
   if (config.backend == settings_.reference) {
     m.agreement = "reference";
   } else {
-    const FrameRequest check{settings_.check_size.width, settings_.check_size.height, config.mode, true, config.max_depth};
-    const FrameImages images = renderer->render(check).images;
-    const Agreement g = compare_frames(images, reference(config));
+    const Agreement g = compare_frames(checked.images, reference(config));
     m.hit_agreement = g.hit_percent;
     m.id_agreement = g.id_percent;
     m.psnr = g.psnr;
     const std::string failed = check_thresholds(g, settings_.thresholds);
     m.agreement = failed.empty() ? "ok" : "DISAGREE: " + failed;
   }
+  // Cut short by lavapipe's loop limit, the images and times are invalid whatever they agree with.
+  if (timed.back().truncated_pixels > 0)
+    m.agreement = "TRUNCATED: " + std::to_string(timed.back().truncated_pixels) + " pixels";
+  else if (checked.truncated_pixels > 0)
+    m.agreement = "TRUNCATED: " + std::to_string(checked.truncated_pixels) + " pixels at the check size";
   if (const uint32_t messages = renderer->validation_messages(); messages > 0)
     m.agreement += " (" + std::to_string(messages) + " validation messages)";
 

@@ -36,6 +36,7 @@ FrameImages render_once(const std::string& backend, const BackendOptions& option
   renderer->prepare(scene);
   device = renderer->device_name();
   FrameResult frame = renderer->render(request);
+  if (const std::string error = truncation_error(backend, frame); !error.empty()) throw Error(error);
   if (const uint32_t messages = renderer->validation_messages(); messages > 0)
     throw Error(backend + ": " + std::to_string(messages) + " Vulkan validation message(s) (printed above)");
   return std::move(frame.images);

@@ -15,12 +15,39 @@ namespace sdfbench {
 namespace {
 
 struct RenderArgs {
-  std::string scene, backend, mode = "primary", size, out, aov, view;
+  std::string scene, backend, mode = "primary", size, out, aov, view, heatmap;
+  bool counters = false;
   std::vector<uint32_t> view_cell;
   std::optional<uint32_t> max_depth;
   unsigned frames = 5, warmup = 1;
   BackendOptions backend_options;
 };
+
+// One untimed instrumented frame (after the timed ones, so their kernels stay uninstrumented):
+// prints the work per ray and writes the --heatmap of steps per pixel.
+void report_counters(const RenderArgs& args, Renderer& renderer, FrameRequest request) {
+  request.counters = true;
+  request.readback = !args.heatmap.empty();
+  const FrameResult frame = renderer.render(request);
+  if (const std::string error = truncation_error(args.backend, frame); !error.empty()) throw Error(error);
+  const auto names = counter_names();
+  std::string line;
+  for (uint32_t k = 0; k < COUNTER_KINDS; ++k) {
+    if (!frame.counters[k]) continue;
+    char value[32];
+    std::snprintf(value, sizeof value, "%.2f", static_cast<double>(*frame.counters[k]) / static_cast<double>(frame.rays));
+    line += std::string(line.empty() ? "" : ", ") + names[k] + " " + value;
+  }
+  if (line.empty())
+    std::cout << "counters n/a: " << args.backend << " does not expose its traversal work (Embree has no counters)\n";
+  else
+    std::cout << "counters per ray (" << frame.rays << " rays, untimed instrumented frame): " << line << "\n";
+  if (!args.heatmap.empty()) {
+    const HeatmapRange range = write_heatmap(frame.images.steps, request.width, request.height, args.heatmap);
+    std::cout << "wrote    " << args.heatmap << " (sphere-tracing steps per pixel, all its rays: 0 dark violet .. "
+              << range.top << " yellow = 99th percentile and above; max " << range.max << ")\n";
+  }
+}
 
 // The frame with the scene hash (or one hash cell's octree) drawn over it, as thesis figures
 // 6.6-6.7; the structures are the backend's (sdf-hash: cell 1 unless --hash-cell).
@@ -46,6 +73,11 @@ void run_render(const RenderArgs& args) {
   if (!args.out.empty()) check_image_path(args.out, "--out");
   if (!args.aov.empty()) check_image_path(args.aov, "--aov");
   if (!args.view.empty() && args.out.empty()) throw Error("--view draws over the --out image: give --out");
+  if (!args.heatmap.empty()) {
+    check_image_path(args.heatmap, "--heatmap");
+    if (!is_sdf_backend(args.backend))
+      throw Error("--heatmap maps sphere-tracing steps: " + args.backend + " takes none (use an sdf-* backend)");
+  }
   const Scene scene = load_scene(args.scene);
   const ImageSize size = frame_size(args.size, scene);
 
@@ -67,11 +99,14 @@ void run_render(const RenderArgs& args) {
     if (timed.back().wall_ms > 1000.0)
       std::cerr << "  frame " << (i + 1) << "/" << args.frames << ": " << timed.back().wall_ms << " ms\n";
   }
+  if (const std::string error = truncation_error(args.backend, timed.back()); !error.empty()) throw Error(error);
   const FrameTimingSummary t = summarize_frames(timed);
   std::printf("time     %s median %.3f ms (min %.3f, max %.3f); wall median %.3f ms\n", t.clock.c_str(), t.median_ms,
               t.min_ms, t.max_ms, t.wall_median_ms);
   std::printf("rate     %.2f FPS, %.2f Mrays/s (%.2f rays/pixel)\n", t.fps, t.mrays_per_s,
               static_cast<double>(timed.back().rays) / (static_cast<double>(size.width) * size.height));
+
+  if (args.counters || !args.heatmap.empty()) report_counters(args, *renderer, request);
 
   FrameImages images = std::move(timed.back().images);
   if (!args.view.empty()) images = structure_view(args, scene, request, images);
@@ -104,6 +139,11 @@ void register_render_command(CLI::App& app) {
       ->check(CLI::IsMember({"hash", "octree"}));
   cmd->add_option("--view-cell", args->view_cell, "--view octree: the hash cell X,Y,Z (default: the most refined one)")
       ->delimiter(',')->expected(3);
+  cmd->add_flag("--counters", args->counters,
+                "after the timed frames, render one untimed instrumented frame and print the work per ray "
+                "(steps, instance/triangle distance evaluations, AABB and triangle tests)");
+  cmd->add_option("--heatmap", args->heatmap,
+                  "write that frame's sphere-tracing steps per pixel as a colour-map image (.png; implies --counters)");
   add_backend_options(*cmd, args->backend_options);
   cmd->callback([args] { run_render(*args); });
 }

@@ -1,5 +1,7 @@
 #include "harness/image_output.h"
 
+#include <algorithm>
+
 #include <OpenImageIO/imageio.h>
 
 #include "renderers/shading/gpu_types.h"
@@ -32,6 +34,16 @@ float id_to_float(uint32_t id) {
   return static_cast<float>(id);
 }
 
+// A viridis-like colour map (perceptually ordered, readable in grey and by colour-blind
+// readers), piecewise linear through five of viridis' colours; x in [0, 1].
+glm::vec3 colour_map(float x) {
+  static const glm::vec3 stops[] = {{0.267f, 0.005f, 0.329f}, {0.231f, 0.322f, 0.545f}, {0.129f, 0.569f, 0.549f},
+                                    {0.369f, 0.788f, 0.384f}, {0.993f, 0.906f, 0.144f}};
+  const float s = glm::clamp(x, 0.0f, 1.0f) * 4.0f;
+  const int i = std::min(static_cast<int>(s), 3);
+  return glm::mix(stops[i], stops[i + 1], s - static_cast<float>(i));
+}
+
 }  // namespace
 
 void check_image_path(const fs::path& path, const char* what) {
@@ -46,6 +58,22 @@ void write_color_image(const FrameImages& images, const fs::path& path) {
   const std::string ext = path.extension().string();
   if (ext != ".exr" && ext != ".hdr") spec.set_format(OIIO::TypeDesc::UINT8);
   write_atomically(path, spec, images.color.data(), OIIO::TypeDesc::FLOAT);
+}
+
+HeatmapRange write_heatmap(const std::vector<uint32_t>& values, uint32_t width, uint32_t height, const fs::path& path) {
+  HeatmapRange range;
+  if (!values.empty()) {
+    std::vector<uint32_t> sorted = values;
+    std::sort(sorted.begin(), sorted.end());
+    range = {sorted[(sorted.size() - 1) * 99 / 100], sorted.back()};
+  }
+  std::vector<glm::vec3> rgb;
+  rgb.reserve(values.size());
+  for (uint32_t v : values)
+    rgb.push_back(colour_map(range.top > 0 ? static_cast<float>(v) / static_cast<float>(range.top) : 0.0f));
+  OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 3, OIIO::TypeDesc::UINT8);
+  write_atomically(path, spec, rgb.data(), OIIO::TypeDesc::FLOAT);
+  return range;
 }
 
 void write_aov_image(const FrameImages& images, const fs::path& path) {

@@ -12,6 +12,17 @@ void check_image_path(const std::filesystem::path& path, const char* what);
 // Writes the shaded image (PNG, EXR, ... by extension) atomically: temp file + rename.
 void write_color_image(const FrameImages& images, const std::filesystem::path& path);
 
+// The value range of a heat map: `top` is yellow (and everything above it), `max` the largest value.
+struct HeatmapRange {
+  uint32_t top = 0, max = 0;
+};
+
+// Writes `values` (one per pixel, row-major, top row first) as an 8-bit colour-map image,
+// atomically: 0 dark violet through blue and green to yellow at the 99th percentile, so that a
+// few grazing rays do not darken the rest.
+HeatmapRange write_heatmap(const std::vector<uint32_t>& values, uint32_t width, uint32_t height,
+                           const std::filesystem::path& path);
+
 // Writes the AOVs as one multi-channel float image (EXR): hit (1 where an instance was hit),
 // depth, instance_id (-1: sky, -2: floor), primitive_id (-1: sky), N.x, N.y, N.z.
 void write_aov_image(const FrameImages& images, const std::filesystem::path& path);

@@ -30,6 +30,8 @@ std::string fixed(double v, int digits) {
   return text;
 }
 
+bool truncated(const Row& r) { return r["agreement"].rfind("TRUNCATED", 0) == 0; }
+
 // FPS with ~3 significant digits, and the row's flags.
 std::string fps_cell(const Row& r) {
   if (r["agreement"].rfind("ERROR", 0) == 0) return "ERROR";
@@ -37,6 +39,7 @@ std::string fps_cell(const Row& r) {
   std::string text = fixed(fps, fps >= 100 ? 0 : fps >= 10 ? 1 : fps >= 1 ? 2 : 3);
   if (r["budget_cut"] == "1") text += " †";
   if (r["agreement"].rfind("DISAGREE", 0) == 0) text += " ✗";
+  if (truncated(r)) text += " ✂";
   return text;
 }
 
@@ -108,6 +111,7 @@ void speedup_table(std::ostringstream& out, const std::vector<Row>& sdf, const s
       const Row* b = find_row(tri, mesh, c);
       const auto ta = thesis.find("6.1", mesh, c), tb = thesis.find("6.3", mesh, c);
       std::string cell = a && b && b->number("fps") > 0 ? fixed(a->number("fps") / b->number("fps"), 2) + "x" : "–";
+      if (a && b && (truncated(*a) || truncated(*b))) cell += " ✂";
       if (ta && tb) cell += " (" + fixed(ta->fps / tb->fps, 0) + "x" + (tb->upper_bound ? "+" : "") + ")";
       out << " " << cell << " |";
     }
@@ -180,7 +184,8 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
   if (!sweep.empty()) sweep_table(out, sweep);
   if (rows.empty()) out << "(no measurements)\n";
   out << "Flags: ✗ images disagree with the reference (see the CSV's agreement column), † the time budget cut the run "
-         "(fewer frames than asked; a single cold frame when only the warm-up fitted), ERROR the configuration failed.\n";
+         "(fewer frames than asked; a single cold frame when only the warm-up fitted), ✂ lavapipe's loop limit cut pixels "
+         "short (image and FPS invalid; README, \"The loop limit\"), ERROR the configuration failed.\n";
   return out.str();
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 // The frame loop of every CPU backend: TBB over 16x16 tiles in an arena of `threads`, each
-// pixel shaded by the shared program (cpu_shading.h) over the backend's tracer.
+// pixel shaded by the shared program (cpu_shading.h) over the backend's tracer. counter_kinds:
+// the work counters the tracer counts (bit k for COUNTER kind k).
+#include <algorithm>
 #include <chrono>
 #include <vector>
 
@@ -15,7 +17,8 @@
 namespace sdfbench {
 
 template <class Tracer>
-FrameResult render_cpu_frame(const Tracer& tracer, const Scene& scene, const FrameRequest& request, unsigned threads) {
+FrameResult render_cpu_frame(const Tracer& tracer, const Scene& scene, const FrameRequest& request, unsigned threads,
+                             uint32_t counter_kinds) {
   const ShadingInputs inputs = make_shading_inputs(scene, request);
   const size_t pixels = static_cast<size_t>(request.width) * request.height;
   FrameResult result;
@@ -28,6 +31,7 @@ FrameResult render_cpu_frame(const Tracer& tracer, const Scene& scene, const Fra
   img.primitive_id.resize(pixels);
   img.normal.resize(pixels);
   std::vector<uint32_t> rays(pixels);
+  std::vector<uint32_t> counts(request.counters ? pixels * COUNTER_KINDS : 0);
 
   const auto start = std::chrono::steady_clock::now();
   tbb::task_arena arena(static_cast<int>(threads));
@@ -40,7 +44,9 @@ FrameResult render_cpu_frame(const Tracer& tracer, const Scene& scene, const Fra
         for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
           const size_t i = static_cast<size_t>(y) * request.width + x;
           shading::PixelAov aov;
-          img.color[i] = program.shade_pixel(glm::uvec2(x, y), aov);
+          shading::PixelCounts work{};
+          img.color[i] = program.shade_pixel(glm::uvec2(x, y), aov, request.counters ? &work : nullptr);
+          if (request.counters) std::copy(work.begin(), work.end(), counts.begin() + i * COUNTER_KINDS);
           img.depth[i] = aov.depth;
           img.instance_id[i] = aov.instance;
           img.primitive_id[i] = aov.prim;
@@ -52,6 +58,10 @@ FrameResult render_cpu_frame(const Tracer& tracer, const Scene& scene, const Fra
   });
   result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   for (uint32_t r : rays) result.rays += r;
+  if (request.counters) {
+    result.counters = sum_counters(counts, counter_kinds);
+    img.steps = pixel_steps(counts, counter_kinds);
+  }
   if (!request.readback) img = FrameImages{};
   return result;
 }

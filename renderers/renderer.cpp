@@ -32,6 +32,8 @@ const std::vector<std::string>& backend_names() {
   return names;
 }
 
+bool is_sdf_backend(const std::string& name) { return name.rfind("sdf-", 0) == 0; }
+
 std::unique_ptr<Renderer> create_renderer(const std::string& name, const BackendOptions& options) {
   if (name == "embree") return std::make_unique<EmbreeRenderer>(options);
   if (name == "tri-aabb") return std::make_unique<TriAabbRenderer>(options);
@@ -49,6 +51,12 @@ sdf::SceneHashParams scene_hash_params_for(const std::string& backend, const Bac
     if (!options.hash_cell_given) params.hash_cell = 1.0f;
   }
   return params;
+}
+
+std::string truncation_error(const std::string& backend, const FrameResult& frame) {
+  if (frame.truncated_pixels == 0) return "";
+  return backend + ": lavapipe's loop limit (65535 iterations per invocation) cut " +
+         std::to_string(frame.truncated_pixels) + " pixels short: the image and timing are invalid";
 }
 
 unsigned cpu_thread_count(const BackendOptions& options) {

@@ -13,6 +13,7 @@
 #include "renderers/sdf/scene_hash.h"
 #include "renderers/sdf/sdf_cache.h"
 #include "renderers/sdf/sphere_tracer.h"
+#include "renderers/work_counters.h"
 #include "scenes/scene.h"
 
 namespace sdfbench {
@@ -44,6 +45,7 @@ struct FrameRequest {
   RenderMode mode = RenderMode::Primary;
   bool readback = true;  // false for timed frames whose pixels are not looked at
   std::optional<uint32_t> max_depth;  // whitted recursion limit (--max-depth); unset: render.max_depth
+  bool counters = false;  // an instrumented frame: count every ray's work (never for timed frames)
 };
 
 // Image and AOVs of the primary rays, row-major, top row first.
@@ -54,12 +56,17 @@ struct FrameImages {
   std::vector<uint32_t> instance_id;      // instance index, or NO_INSTANCE / FLOOR_INSTANCE
   std::vector<uint32_t> primitive_id;     // triangle index within the mesh
   std::vector<glm::vec3> normal;          // world shading normal facing the camera
+  std::vector<uint32_t> steps;            // instrumented frames: sphere-tracing steps of all the pixel's rays (SDF backends)
 };
 
 struct FrameResult {
   double device_ms = -1.0;  // GPU timestamp difference x timestampPeriod; -1 when not available
   double wall_ms = 0.0;     // submit + wait (Vulkan) or the whole frame (CPU)
   uint64_t rays = 0;        // every ray traced (primary + shadow + secondary)
+  WorkCounters counters;    // instrumented frames: the work of all rays (per ray: / rays)
+  // Pixels that lavapipe's loop limit cut short (README "The loop limit"): when not 0, the
+  // image and the frame time are invalid.
+  uint64_t truncated_pixels = 0;
   FrameImages images;       // filled when FrameRequest::readback
 };
 
@@ -84,8 +91,13 @@ class Renderer {
 };
 
 const std::vector<std::string>& backend_names();
+bool is_sdf_backend(const std::string& name);  // sdf-hash, sdf-octree, sdf-cpu: they sphere-trace
 // Throws Error for an unknown name, listing the known ones.
 std::unique_ptr<Renderer> create_renderer(const std::string& name, const BackendOptions& options);
+
+// "<backend>: lavapipe's loop limit ... cut N pixels short: ..." for a frame with truncated pixels
+// (README "The loop limit"); empty when none were.
+std::string truncation_error(const std::string& backend, const FrameResult& frame);
 
 // Worker threads for CPU backends: options.threads, else LP_NUM_THREADS (what lavapipe
 // uses), else the hardware concurrency.

@@ -71,6 +71,7 @@ TEST(MeasurementColumns, MatchTheDocumentedListAndFieldCount) {
   for (const char* required : {"scene", "mesh", "triangles", "objects", "backend", "mode", "width", "height", "hash_cell",
                                "octree_depth", "octree_min_objects", "mesh_cell", "frames", "ms_median", "ms_min", "ms_max",
                                "fps", "mrays_per_s", "steps_per_ray", "instance_evals_per_ray", "triangle_evals_per_ray",
+                               "aabb_tests_per_ray", "triangle_tests_per_ray",
                                "build_ms", "structure_bytes", "hit_agreement", "id_agreement", "psnr", "budget_cut",
                                "device", "driver", "cpu", "threads", "commit"})
     EXPECT_NE(std::find(c.begin(), c.end(), required), c.end()) << required;
@@ -125,6 +126,8 @@ CsvTable rows_for_markdown() {
   add("6.1", "bunny", 10, "sdf-octree", "whitted", 4.25, "DISAGREE: hit", false);
   add("6.3", "bunny", 1, "tri-aabb", "shadow", 2.5, "ok", false);
   add("6.3", "bunny", 10, "tri-aabb", "shadow", 0.5, "ok", true);
+  add("6.1", "bunny", 100, "sdf-octree", "whitted", 2, "ok", false);
+  add("6.3", "bunny", 100, "tri-aabb", "shadow", 40, "TRUNCATED: 200 pixels", false);
   add("", "bunny", 1, "embree", "shadow", 300, "reference", false);
   return t;
 }
@@ -134,9 +137,10 @@ TEST(MarkdownReport, LaysOutThesisTablesWithThesisValuesAndFlags) {
   EXPECT_NE(md.find("### Table 6.1: sdf-octree, whitted (320x180)"), std::string::npos) << md;
   EXPECT_NE(md.find("| mesh \\ objects | 1 | 10 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| bunny | 12.5 (380) | 4.25 ✗ (100) |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| bunny | 2.50 (9.0) | 0.500 † (1.0) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| bunny | 2.50 (9.0) | 0.500 † (1.0) | 40.0 ✂ ("), std::string::npos) << md;
+  EXPECT_NE(md.find("✂ lavapipe's loop limit cut pixels short"), std::string::npos) << md;
   // Speed-up 6.1 / 6.3: 12.5 / 2.5 = 5x measured, 380 / 9 = 42x in the thesis.
-  EXPECT_NE(md.find("| bunny | 5.00x (42x) | 8.50x (100x) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| bunny | 5.00x (42x) | 8.50x (100x) | 0.05x ✂ ("), std::string::npos) << md;
   EXPECT_NE(md.find("### Every backend, shadow mode"), std::string::npos) << md;
   EXPECT_EQ(md.find("6.2"), std::string::npos) << "no rows for table 6.2, so no such table";
 }

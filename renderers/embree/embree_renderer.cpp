@@ -75,7 +75,7 @@ void EmbreeRenderer::prepare(const Scene& scene) {
   check_device("building the BVH");
 }
 
-bool EmbreeRenderer::closest_hit(shading::Ray ray, float tmax, shading::Hit& hit) const {
+bool EmbreeRenderer::closest_hit(shading::Ray ray, float tmax, shading::Hit& hit, shading::PixelCounts*) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh{};
@@ -103,7 +103,7 @@ bool EmbreeRenderer::closest_hit(shading::Ray ray, float tmax, shading::Hit& hit
   return true;
 }
 
-bool EmbreeRenderer::any_hit(shading::Ray ray, float tmax) const {
+bool EmbreeRenderer::any_hit(shading::Ray ray, float tmax, shading::PixelCounts*) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r{};
@@ -118,7 +118,7 @@ bool EmbreeRenderer::any_hit(shading::Ray ray, float tmax) const {
 
 FrameResult EmbreeRenderer::render(const FrameRequest& request) {
   if (!scene_) throw Error("internal: render before prepare");
-  return render_cpu_frame(*this, *scene_, request, threads_);
+  return render_cpu_frame(*this, *scene_, request, threads_, 0u);
 }
 
 }  // namespace sdfbench

@@ -22,9 +22,10 @@ class EmbreeRenderer : public Renderer {
   void prepare(const Scene& scene) override;
   FrameResult render(const FrameRequest& request) override;
 
-  // The backend's two queries, as the shading program calls them.
-  bool closest_hit(shading::Ray ray, float tmax, shading::Hit& hit) const;
-  bool any_hit(shading::Ray ray, float tmax) const;
+  // The backend's two queries, as the shading program calls them. Embree exposes no traversal
+  // counts: instrumented frames leave `counts` alone and report no counters.
+  bool closest_hit(shading::Ray ray, float tmax, shading::Hit& hit, shading::PixelCounts* counts) const;
+  bool any_hit(shading::Ray ray, float tmax, shading::PixelCounts* counts) const;
 
  private:
   void check_device(const char* what) const;

@@ -483,6 +483,55 @@ float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::v
   return std::sqrt(best);
 }
 
+MeshTraceLists make_trace_lists(const MeshDistanceGrid& grid, const Mesh& mesh) {
+  MeshTraceLists lists;
+  lists.triangles.reserve(grid.cell_triangles.size());
+  std::vector<std::pair<float, uint32_t>> cell;
+  for (uint32_t z = 0; z < grid.dims.z; ++z) {
+    for (uint32_t y = 0; y < grid.dims.y; ++y) {
+      for (uint32_t x = 0; x < grid.dims.x; ++x) {
+        const uint32_t c = x + grid.dims.x * (y + grid.dims.y * z);
+        const glm::vec3 centre = grid.origin + (glm::vec3(x, y, z) + 0.5f) * grid.cell_size;
+        cell.clear();
+        for (uint32_t i = grid.cell_begin[c]; i < grid.cell_begin[c + 1]; ++i)
+          cell.emplace_back(closest_on_mesh_triangle(mesh, grid.cell_triangles[i], centre).distance_squared,
+                            grid.cell_triangles[i]);
+        std::sort(cell.begin(), cell.end());
+        for (const auto& [d2, t] : cell) lists.triangles.push_back(t);
+      }
+    }
+  }
+  for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    const glm::vec3 centre = (vertex(mesh, t, 0) + vertex(mesh, t, 1) + vertex(mesh, t, 2)) / 3.0f;
+    float radius = 0.0f;
+    for (int k = 0; k < 3; ++k) radius = std::max(radius, glm::length(vertex(mesh, t, k) - centre));
+    lists.spheres.emplace_back(centre, radius * 1.0001f);  // rounding stays on the safe side
+  }
+  return lists;
+}
+
+float traced_grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const MeshTraceLists& lists,
+                           const glm::vec3& p, uint32_t& closest_triangle, uint32_t& evaluated) {
+  closest_triangle = UINT32_MAX;
+  glm::vec3 hi;
+  if (!in_box(grid, p, hi)) return std::sqrt(point_box_distance2(p, mesh.bounds.min, mesh.bounds.max));
+  const uint32_t cell = cell_of(grid, p);
+  float best = kInf;
+  for (uint32_t i = grid.cell_begin[cell]; i < grid.cell_begin[cell + 1]; ++i) {
+    const uint32_t t = lists.triangles[i];
+    // Farther than the best (with a margin for rounding): cannot win.
+    const float lower = glm::length(p - glm::vec3(lists.spheres[t])) - lists.spheres[t].w;
+    if (lower > 0.0f && lower * lower > best * 1.0001f) continue;
+    ++evaluated;
+    const float d2 = closest_on_mesh_triangle(mesh, t, p).distance_squared;
+    if (d2 < best || (d2 == best && t < closest_triangle)) {  // ties: the lower index, as grid_distance
+      best = d2;
+      closest_triangle = t;
+    }
+  }
+  return std::sqrt(best);
+}
+
 float grid_signed_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p) {
   uint32_t t = UINT32_MAX;
   const float d = grid_distance(grid, mesh, p, &t);

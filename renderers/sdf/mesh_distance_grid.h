@@ -68,6 +68,20 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
 // outside, the distance to the mesh bounds (a safe lower bound, >= the distance to the grid box). closest_triangle set when inside (else UINT32_MAX).
 float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p, uint32_t* closest_triangle = nullptr);
 
+// A grid's lists as the sphere tracers walk them (sdf-cpu and the Vulkan kernels alike): each cell's
+// triangles nearest to the cell centre first, and each triangle's bounding sphere, so that a query
+// finds a close triangle early and skips the triangles whose sphere is farther than the best.
+struct MeshTraceLists {
+  std::vector<uint32_t> triangles;  // cell_triangles reordered within each cell (ties: lower index first)
+  std::vector<glm::vec4> spheres;   // per triangle: centre, radius (rounded up)
+};
+MeshTraceLists make_trace_lists(const MeshDistanceGrid& grid, const Mesh& mesh);
+
+// grid_distance() through `lists`, skipping by bounding sphere: the same distance and closest
+// triangle, less work. Adds the point-triangle distances it computed to `evaluated`.
+float traced_grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const MeshTraceLists& lists,
+                           const glm::vec3& p, uint32_t& closest_triangle, uint32_t& evaluated);
+
 // Signed distance (negative inside) for points inside the grid box, sign from the pseudo-normal of
 // the closest feature (correct for closed, consistently oriented meshes). Outside the grid box
 // (which contains the whole mesh) the point is outside: the positive box lower bound.

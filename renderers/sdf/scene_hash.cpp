@@ -290,23 +290,28 @@ float instance_distance(const SceneSdf& sdf, const Scene& scene, uint32_t i, con
   return grid_distance(sdf.mesh_grids[instance.mesh], scene.meshes[instance.mesh], local, triangle) * instance.transform.scale;
 }
 
-SceneDistance scene_distance(const SceneSdf& sdf, const Scene& scene, const glm::vec3& p) {
-  const SceneHash& hash = sdf.hash;
-  const Aabb box{hash.origin, hash.origin + glm::vec3(hash.dims) * hash.cell_size};
-  const float outside = box_distance(box, p);
-  if (outside > 0.0f) return {outside, kNone, kNone, 0};
+const OctreeNode& leaf_at(const SceneHash& hash, const glm::vec3& p) {
   const glm::uvec3 cell = glm::min(glm::uvec3(glm::max((p - hash.origin) / hash.cell_size, glm::vec3(0.0f))), hash.dims - 1u);
   Aabb node_box{hash.origin + glm::vec3(cell) * hash.cell_size, hash.origin + glm::vec3(cell + 1u) * hash.cell_size};
   const OctreeNode* node = &hash.nodes[hash.cell_root[(static_cast<size_t>(cell.z) * hash.dims.y + cell.y) * hash.dims.x + cell.x]];
-  while (node->first_child >= 0) {  // thesis Algorithm 5.7
+  while (node->first_child >= 0) {
     const glm::vec3 mid = node_box.center();
     const int k = (p.x >= mid.x ? 1 : 0) | (p.y >= mid.y ? 2 : 0) | (p.z >= mid.z ? 4 : 0);
     node_box = octant(node_box, k);
     node = &hash.nodes[static_cast<size_t>(node->first_child) + k];
   }
+  return *node;
+}
+
+SceneDistance scene_distance(const SceneSdf& sdf, const Scene& scene, const glm::vec3& p) {
+  const SceneHash& hash = sdf.hash;
+  const Aabb box{hash.origin, hash.origin + glm::vec3(hash.dims) * hash.cell_size};
+  const float outside = box_distance(box, p);
+  if (outside > 0.0f) return {outside, kNone, kNone, 0};
+  const OctreeNode& leaf = leaf_at(hash, p);
   SceneDistance best{std::numeric_limits<float>::infinity(), kNone, kNone, 0};
-  for (uint32_t k = 0; k < node->list_count; ++k) {
-    const uint32_t i = hash.instance_lists[node->list_begin + k];
+  for (uint32_t k = 0; k < leaf.list_count; ++k) {
+    const uint32_t i = hash.instance_lists[leaf.list_begin + k];
     uint32_t triangle = kNone;
     const float d = instance_distance(sdf, scene, i, p, &triangle);
     ++best.evaluations;

@@ -71,7 +71,13 @@ struct SceneDistance {
   uint32_t instance;  // UINT32_MAX outside the hash box
   uint32_t triangle;
   uint32_t evaluations;  // instance distances evaluated
+  // traced_scene_distance() only (traced_distance.h): the work behind the distance.
+  uint32_t triangle_evaluations = 0;  // point-triangle distances
+  uint32_t box_tests = 0;             // instance boxes tested to skip an instance
 };
+
+// The octree leaf holding p (thesis Algorithm 5.7); p inside the hash box (outside: the nearest cell's).
+const OctreeNode& leaf_at(const SceneHash& hash, const glm::vec3& p);
 
 // Hash cell -> octree descent -> min over the leaf's instances. Outside the hash box: the
 // distance to the box (a lower bound).

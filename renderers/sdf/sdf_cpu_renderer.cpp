@@ -29,7 +29,7 @@ std::optional<StructureStats> SdfCpuRenderer::structure_stats() const {
 
 FrameResult SdfCpuRenderer::render(const FrameRequest& request) {
   if (!tracer_) throw Error("internal: render before prepare");
-  return render_cpu_frame(*tracer_, *scene_, request, threads_);
+  return render_cpu_frame(*tracer_, *scene_, request, threads_, kSdfCounters);
 }
 
 }  // namespace sdfbench

@@ -22,9 +22,13 @@ glm::vec2 barycentric(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b
 }  // namespace
 
 SphereTracer::SphereTracer(const Scene& scene, const SceneSdf& sdf, const SphereTraceParams& params)
-    : scene_(scene), sdf_(sdf), params_(params), epsilon_(params.hit_epsilon * scene_scale(scene)) {}
+    : scene_(scene),
+      sdf_(sdf),
+      culling_(make_trace_culling(scene, sdf)),
+      params_(params),
+      epsilon_(params.hit_epsilon * scene_scale(scene)) {}
 
-float SphereTracer::march(const shading::Ray& ray, float tmax, SceneDistance& at_hit) const {
+float SphereTracer::march(const shading::Ray& ray, float tmax, SceneDistance& at_hit, shading::PixelCounts* counts) const {
   const SceneHash& hash = sdf_.hash;
   // Clip to the hash box: outside it there is nothing to hit.
   const glm::vec3 lo = hash.origin, hi = hash.origin + glm::vec3(hash.dims) * hash.cell_size;
@@ -39,7 +43,15 @@ float SphereTracer::march(const shading::Ray& ray, float tmax, SceneDistance& at
   if (t0 > t1) return -1.0f;
   float t = t0;
   for (uint32_t step = 0; step < params_.max_steps && t <= t1; ++step) {
-    const SceneDistance d = scene_distance(sdf_, scene_, ray.origin + t * ray.dir);
+    // Clamped: the clip's rounding can leave a point a hair outside the box, where a step would
+    // be wasted (and wasted differently by the kernels, so the counters would not agree).
+    const SceneDistance d = traced_scene_distance(sdf_, scene_, culling_, glm::clamp(ray.origin + t * ray.dir, lo, hi));
+    if (counts) {
+      (*counts)[COUNTER_STEPS] += 1;
+      (*counts)[COUNTER_INSTANCE_EVALS] += d.evaluations;
+      (*counts)[COUNTER_TRIANGLE_EVALS] += d.triangle_evaluations;
+      (*counts)[COUNTER_AABB_TESTS] += d.box_tests;
+    }
     // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
     if (d.distance < epsilon_ && d.triangle != std::numeric_limits<uint32_t>::max()) {
       at_hit = d;
@@ -52,9 +64,9 @@ float SphereTracer::march(const shading::Ray& ray, float tmax, SceneDistance& at
   return -1.0f;
 }
 
-bool SphereTracer::closest_hit(shading::Ray ray, float tmax, shading::Hit& hit) const {
+bool SphereTracer::closest_hit(shading::Ray ray, float tmax, shading::Hit& hit, shading::PixelCounts* counts) const {
   SceneDistance d{};
-  const float t = march(ray, tmax, d);
+  const float t = march(ray, tmax, d, counts);
   if (t < 0.0f) return false;
   const Instance& instance = scene_.instances[d.instance];
   const Mesh& mesh = scene_.meshes[instance.mesh];
@@ -72,9 +84,9 @@ bool SphereTracer::closest_hit(shading::Ray ray, float tmax, shading::Hit& hit) 
   return true;
 }
 
-bool SphereTracer::any_hit(shading::Ray ray, float tmax) const {
+bool SphereTracer::any_hit(shading::Ray ray, float tmax, shading::PixelCounts* counts) const {
   SceneDistance d{};
-  return march(ray, tmax, d) >= 0.0f;
+  return march(ray, tmax, d, counts) >= 0.0f;
 }
 
 }  // namespace sdfbench::sdf

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "renderers/frame_params.h"
-#include "renderers/sdf/triangle_distance.h"
+#include "renderers/sdf/traced_distance.h"
 #include "scenes/error.h"
 
 namespace sdfbench {
@@ -18,45 +18,6 @@ glm::uvec4 bits(const glm::vec3& v, uint32_t w) { return glm::uvec4(bits(v.x), b
 
 // Row r of an affine matrix (glm is column-major) as float bits.
 glm::uvec4 row_bits(const glm::mat4& m, int r) { return glm::uvec4(bits(m[0][r]), bits(m[1][r]), bits(m[2][r]), bits(m[3][r])); }
-
-// World box around the transformed mesh-bounds box: no farther from any point than the
-// instance's surface or than the bound the CPU returns outside its grid (the distance to that
-// rotated box), so a distance to it that cannot beat the best so far safely skips the instance.
-Aabb enclosing_box(const Aabb& bounds, const glm::mat4& object_to_world) {
-  Aabb box;
-  for (int k = 0; k < 8; ++k) {
-    const glm::vec3 corner((k & 1) ? bounds.max.x : bounds.min.x, (k & 2) ? bounds.max.y : bounds.min.y,
-                           (k & 4) ? bounds.max.z : bounds.min.z);
-    box.extend(glm::vec3(object_to_world * glm::vec4(corner, 1.0f)));
-  }
-  const glm::vec3 pad(1e-5f * glm::length(box.extent()));  // float rounding stays on the safe side
-  return Aabb{box.min - pad, box.max + pad};
-}
-
-// Each grid cell's triangles, nearest to the cell centre first: the kernel then finds a close
-// triangle early and skips most of the rest by their bounding spheres. (Ties between equal
-// distances still go to the lowest index, so the order changes no result.)
-void append_sorted_lists(const Mesh& mesh, const sdf::MeshDistanceGrid& grid, uint32_t first_triangle,
-                         std::vector<uint32_t>& out) {
-  std::vector<std::pair<float, uint32_t>> list;
-  for (uint32_t z = 0; z < grid.dims.z; ++z) {
-    for (uint32_t y = 0; y < grid.dims.y; ++y) {
-      for (uint32_t x = 0; x < grid.dims.x; ++x) {
-        const size_t c = x + static_cast<size_t>(grid.dims.x) * (y + static_cast<size_t>(grid.dims.y) * z);
-        const glm::vec3 centre = grid.origin + (glm::vec3(x, y, z) + 0.5f) * grid.cell_size;
-        list.clear();
-        for (uint32_t i = grid.cell_begin[c]; i < grid.cell_begin[c + 1]; ++i) {
-          const glm::uvec3& t = mesh.triangles[grid.cell_triangles[i]];
-          const float d2 =
-              sdf::closest_on_triangle(centre, mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]).distance_squared;
-          list.emplace_back(d2, grid.cell_triangles[i]);
-        }
-        std::sort(list.begin(), list.end());
-        for (const auto& [d2, t] : list) out.push_back(first_triangle + t);
-      }
-    }
-  }
-}
 
 void check_word(size_t value, const char* what) {
   if (value >= SDF_LEAF_BIT)
@@ -113,6 +74,7 @@ SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const
   out.params.hash_dims = glm::uvec4(hash.dims, tracing.max_steps);
   out.params.tracing = glm::vec4(tracing.hit_epsilon * scene_scale(scene), 0.0f, 0.0f, 0.0f);
   flatten_hash(hash, out);
+  const sdf::TraceCulling culling = sdf::make_trace_culling(scene, sdf);
 
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
@@ -126,24 +88,20 @@ SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const
     out.mesh_records.push_back(bits(mesh.bounds.max, 0u));
     for (size_t c = 0; c < grid.cell_count(); ++c)
       out.grid_cells.emplace_back(list_base + grid.cell_begin[c], list_base + grid.cell_begin[c + 1]);
-    append_sorted_lists(mesh, grid, first_triangle, out.grid_triangles);
+    for (uint32_t t : culling.meshes[m].triangles) out.grid_triangles.push_back(first_triangle + t);
+    out.spheres.insert(out.spheres.end(), culling.meshes[m].spheres.begin(), culling.meshes[m].spheres.end());
     for (const glm::uvec3& t : mesh.triangles) {
-      glm::vec3 centre(0.0f);
       for (int k = 0; k < 3; ++k) {
         out.vertices.emplace_back(mesh.positions[t[k]], 1.0f);
         out.normals.emplace_back(mesh.normals[t[k]], 0.0f);
-        centre += mesh.positions[t[k]] / 3.0f;
       }
-      float radius = 0.0f;
-      for (int k = 0; k < 3; ++k) radius = std::max(radius, glm::length(mesh.positions[t[k]] - centre));
-      out.spheres.emplace_back(centre, radius * 1.0001f);  // rounding stays on the safe side
     }
   }
 
   for (size_t i = 0; i < scene.instances.size(); ++i) {
     const Instance& instance = scene.instances[i];
     const glm::mat4 object_to_world = instance.transform.object_to_world();
-    const Aabb box = enclosing_box(scene.meshes[instance.mesh].bounds, object_to_world);
+    const Aabb& box = culling.instance_boxes[i];
     out.instance_records.push_back(bits(box.min, instance.mesh));
     out.instance_records.push_back(bits(box.max, bits(instance.transform.scale)));
     for (int r = 0; r < 3; ++r) out.instance_records.push_back(row_bits(sdf.world_to_object[i], r));

@@ -1,6 +1,7 @@
-// The scene distance of the SDF backends, as scene_distance() in renderers/sdf/scene_hash.cpp:
-// hash cell -> octree descent (thesis Algorithm 5.7) -> min over the leaf's instances of the
-// mesh-grid distance in the instance's frame, scaled back.
+// The scene distance of the SDF backends, as traced_scene_distance() in
+// renderers/sdf/traced_distance.cpp (same shortcuts, same work counted): hash cell -> octree
+// descent (thesis Algorithm 5.7) -> min over the leaf's instances of the mesh-grid distance in the
+// instance's frame, scaled back.
 #include "sdf_layout.glsl"
 #include "sdf_triangle.glsl"
 
@@ -66,6 +67,7 @@ float mesh_distance(uint mesh, vec3 p, out uint triangle) {
     vec4 sphere = texelFetch(tri_spheres, int(t));
     float lower = length(p - sphere.xyz) - sphere.w;
     if (lower > 0.0f && lower * lower > best * 1.0001f) continue;
+    COUNT(COUNTER_TRIANGLE_EVALS, 1u);
     vec3 a = fetch_triangle_vertex(t, 0), b = fetch_triangle_vertex(t, 1), v2 = fetch_triangle_vertex(t, 2);
     float d2 = distance_squared(p, closest_on_triangle(p, a, b, v2));
     // Ties go to the lower triangle index, as in the CPU's ascending lists.
@@ -105,7 +107,9 @@ SceneDistance scene_distance(vec3 p) {
     // (the CPU keeps the first strict minimum too), and its transform and triangles go unread.
     uvec4 box_min = texelFetch(instance_records, record);
     uvec4 box_max = texelFetch(instance_records, record + 1);
+    COUNT(COUNTER_AABB_TESTS, 1u);
     if (box_distance(p, uintBitsToFloat(box_min.xyz), uintBitsToFloat(box_max.xyz)) >= best.distance) continue;
+    COUNT(COUNTER_INSTANCE_EVALS, 1u);
     uint triangle;
     float d = mesh_distance(box_min.w, transform_point(record + 2, p), triangle) * uintBitsToFloat(box_max.w);
     if (d < best.distance) best = SceneDistance(d, i, triangle);

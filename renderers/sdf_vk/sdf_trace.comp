@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // The thesis' renderer (chapters 4-5): sphere tracing (Hart 1996) through the scene hash and
 // its octrees, for both sdf-hash (octree depth 0: a leaf per cell) and sdf-octree. The same
-// algorithm as SphereTracer in renderers/sdf/sphere_tracer.cpp, so the images agree with sdf-cpu.
+// algorithm as SphereTracer in renderers/sdf/sphere_tracer.cpp, so the images and the work
+// counters agree with sdf-cpu.
 
 #include "frame_bindings.glsl"
 #include "sdf_scene_distance.glsl"
@@ -27,7 +28,10 @@ float march(Ray ray, float tmax, out SceneDistance at_hit) {
   if (t0 > t1) return -1.0f;
   float t = t0;
   for (uint step = 0u; step < sdf.hash_dims.w && t <= t1; ++step) {
-    SceneDistance d = scene_distance(ray.origin + t * ray.dir);
+    COUNT(COUNTER_STEPS, 1u);
+    // Clamped: the clip's rounding can leave a point a hair outside the box, where a step would
+    // be wasted (and wasted differently by sdf-cpu, so the counters would not agree).
+    SceneDistance d = scene_distance(clamp(ray.origin + t * ray.dir, lo, hi));
     // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
     if (d.distance < sdf.tracing.x && d.triangle != SDF_NONE) {
       at_hit = d;

@@ -5,7 +5,8 @@
 
 namespace sdfbench::shading {
 
-// Tracer must provide closest_hit(Ray, float, Hit&) and any_hit(Ray, float), const.
+// Tracer must provide closest_hit(Ray, float, Hit&, PixelCounts*) and any_hit(Ray, float,
+// PixelCounts*), const; they add their work to the counts when given some (instrumented frames).
 template <class Tracer>
 class CpuShading {
  public:
@@ -29,9 +30,10 @@ class CpuShading {
   const GpuImplicitObject* const implicit_objects;  // frame.limits.y of them
   const GpuImplicitNode* const implicit_nodes;
   PathEntry stack[STACK_SIZE];  // the ray stack of the pixel being shaded
+  PixelCounts* counts_ = nullptr;  // the pixel's work counts, in instrumented frames
 
-  bool closest_hit(Ray ray, float tmax, Hit& hit) { return tracer_.closest_hit(ray, tmax, hit); }
-  bool any_hit(Ray ray, float tmax) { return tracer_.any_hit(ray, tmax); }
+  bool closest_hit(Ray ray, float tmax, Hit& hit) { return tracer_.closest_hit(ray, tmax, hit, counts_); }
+  bool any_hit(Ray ray, float tmax) { return tracer_.any_hit(ray, tmax, counts_); }
   vec4 texel_at(uint index) const { return texels[index]; }
   bool has_textures() const { return texels != nullptr; }
   bool has_implicits() const { return frame.limits.y > 0u; }
@@ -42,8 +44,10 @@ class CpuShading {
  public:
 #include "shading.glsl"
 
-  // All of a pixel's rays at once (the Vulkan kernel spreads whitted rays over passes).
-  vec4 shade_pixel(uvec2 pixel, PixelAov& aov) {
+  // All of a pixel's rays at once (the Vulkan kernel spreads whitted rays over passes); their
+  // work is added to `counts` unless it is null.
+  vec4 shade_pixel(uvec2 pixel, PixelAov& aov, PixelCounts* counts) {
+    counts_ = counts;
     PixelState s;
     begin_pixel(s, aov);
     trace_ray(primary_ray(pixel), s, aov);

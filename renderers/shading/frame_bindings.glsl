@@ -1,6 +1,8 @@
 // Bindings 0-5 and 30-31, common to every Vulkan backend (filled by VulkanFrameRunner; 6-7:
-// render_main.glsl). The implicit objects sit at 30-31, clear of the backends' own bindings (8 on).
+// render_main.glsl; COUNTERS_BINDING: work_counters.glsl). The implicit objects sit at 30-31,
+// clear of the backends' own bindings (8 on).
 #include "shading_types.glsl"
+#include "work_counters.glsl"
 
 layout(std140, binding = 0) uniform FrameBlock { FrameParams frame; };
 layout(std430, binding = 1) readonly buffer MaterialBlock { GpuMaterial materials[]; };

@@ -1,6 +1,9 @@
 #pragma once
 // shading_types.glsl seen from C++: buffer layouts, Ray, Hit and the shared constants; and the
 // implicit primitives' distance and uv functions (implicit_sdf.glsl).
+#include <array>
+#include <cstdint>
+
 #include <glm/glm.hpp>
 
 namespace sdfbench::shading {
@@ -13,4 +16,7 @@ namespace sdfbench::shading {
 // The GLSL #defines as typed C++ constants.
 inline constexpr uint32_t NO_INSTANCE_VALUE = NO_INSTANCE;
 inline constexpr uint32_t FLOOR_INSTANCE_VALUE = FLOOR_INSTANCE;
+
+// One pixel's work in an instrumented frame, indexed by COUNTER_* (the CPU tracers add to it).
+using PixelCounts = std::array<uint32_t, COUNTER_KINDS>;
 }  // namespace sdfbench::shading

@@ -1,11 +1,11 @@
 // Entry point shared by the Vulkan backends. The backend's .comp file declares its own
 // scene bindings (binding >= 8) and closest_hit/any_hit, then includes this file.
 // VulkanFrameRunner compiles it per mode and scene: SHADING_MODE (MODE_*), SHADING_TEXTURES and
-// SHADING_IMPLICITS (bool).
+// SHADING_IMPLICITS (bool), COUNTERS (0 or 1, work_counters.glsl).
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(push_constant) uniform TilePush {
-  uvec4 tile;  // xy: pixel offset of this dispatch's tile; z: whitted pass (0: the first)
+  uvec4 tile;  // xy: pixel offset of this dispatch's tile; z: whitted pass (0: the first); w: 2 (loop_limit_hit)
 } push;
 
 // whitted, per invocation of a tile: its ray stack and its state between passes; `pending` is
@@ -40,6 +40,25 @@ void stack_store(uint i, PathEntry e) {
 
 #include "shading.glsl"
 
+// lavapipe (Mesa 22.3) gives an invocation 65535 loop iterations in all, then silently ends every
+// loop at its first check. A loop of push.tile.w = 2 iterations, a run-time count the compiler
+// cannot unroll, that stops short says this invocation ran out: its pixel is cut short.
+bool loop_limit_hit() {
+  uint done = 0u;
+  for (uint i = 0u; i < push.tile.w; ++i) done++;
+  return done != push.tile.w;
+}
+
+#if COUNTERS
+// Adds this invocation's work to the pixel's counters (whitted: one pass of several).
+void store_counters(uint index, bool first) {
+  for (uint k = 0u; k < COUNTER_KINDS; ++k) {
+    uint i = index * COUNTER_KINDS + k;
+    pixel_counters[i] = first ? counted[k] : pixel_counters[i] + counted[k];
+  }
+}
+#endif
+
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy + push.tile.xy;
   if (pixel.x >= frame.image.x || pixel.y >= frame.image.y) return;
@@ -61,10 +80,16 @@ void main() {
     ray = pop_ray(s);
   }
   trace_ray(ray, s, aov);
+  bool cut = loop_limit_hit();
   if (first) {
     out_aov[index].normal_depth = vec4(aov.normal, aov.depth);
-    out_aov[index].ids = uvec4(aov.instance, aov.prim, 0u, 0u);
+    out_aov[index].ids = uvec4(aov.instance, aov.prim, 0u, cut ? 1u : 0u);
+  } else if (cut) {
+    out_aov[index].ids.w = 1u;
   }
+#if COUNTERS
+  store_counters(index, first);
+#endif
   if (SHADING_MODE == MODE_WHITTED) {
     states[slot] = s;
     if (s.counters.x > 0u) {

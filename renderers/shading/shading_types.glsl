@@ -23,6 +23,16 @@
 // stack never holds more than one pending ray per depth plus the pair just pushed.
 #define STACK_SIZE (MAX_DEPTH_LIMIT + 1u)
 
+// Work counters of instrumented frames (README "Counters"): per pixel, summed over all its rays,
+// COUNTER_KINDS of them per pixel in this order.
+#define COUNTER_STEPS 0u           // sphere-tracing steps (scene distance queries)
+#define COUNTER_INSTANCE_EVALS 1u  // instance distances: a mesh grid queried in an instance's frame
+#define COUNTER_TRIANGLE_EVALS 2u  // point-triangle distances
+#define COUNTER_AABB_TESTS 3u      // tri-aabb: ray-box slab tests; SDF: instance boxes tested to skip an instance
+#define COUNTER_TRIANGLE_TESTS 4u  // ray-triangle intersection tests (Möller-Trumbore)
+#define COUNTER_KINDS 5u
+#define COUNTERS_BINDING 32  // the per-pixel counters buffer: past every backend's bindings (8 and up)
+
 #define NO_INSTANCE 0xffffffffu     // the ray escaped to the sky
 #define FLOOR_INSTANCE 0xfffffffeu  // the analytic floor plane, shared by every backend
 
@@ -107,7 +117,7 @@ struct PixelState {
 // Per-pixel output written by the kernels: the AOVs of the primary hit.
 struct GpuAov {
   vec4 normal_depth;  // xyz: shading normal facing the camera, w: ray parameter t (0: miss)
-  uvec4 ids;          // x: instance id, y: primitive id, z: rays traced for this pixel
+  uvec4 ids;          // x: instance id, y: primitive id, z: rays traced for this pixel, w: 1: cut short (render_main.glsl)
 };
 
 struct Ray {

@@ -19,6 +19,7 @@ vec3 safe_inverse(vec3 d) {
 
 // Slab test: does the ray enter the box before tmax?
 bool hits_box(vec3 origin, vec3 inv_dir, vec3 box_min, vec3 box_max, float tmax) {
+  COUNT(COUNTER_AABB_TESTS, 1u);
   vec3 t0 = (box_min - origin) * inv_dir;
   vec3 t1 = (box_max - origin) * inv_dir;
   vec3 lo = min(t0, t1);
@@ -30,6 +31,7 @@ bool hits_box(vec3 origin, vec3 inv_dir, vec3 box_min, vec3 box_max, float tmax)
 
 // Möller & Trumbore 1997, two-sided; t in (0, tmax).
 bool hits_triangle(vec3 o, vec3 d, int base, float tmax, out float t, out vec2 uv) {
+  COUNT(COUNTER_TRIANGLE_TESTS, 1u);
   vec3 v0 = texelFetch(tri_vertices, base).xyz;
   vec3 e1 = texelFetch(tri_vertices, base + 1).xyz - v0;
   vec3 e2 = texelFetch(tri_vertices, base + 2).xyz - v0;

@@ -9,9 +9,14 @@
 #include "scenes/error.h"
 
 namespace sdfbench {
+namespace {
 
-VulkanFrameRunner::VulkanFrameRunner(VulkanContext& context, std::string shader_name)
-    : context_(context), shader_name_(std::move(shader_name)) {
+constexpr uint32_t kLoopProbeTrips = 2;  // the trip count of render_main.glsl's loop_limit_hit (push constant w)
+
+}  // namespace
+
+VulkanFrameRunner::VulkanFrameRunner(VulkanContext& context, std::string shader_name, uint32_t counter_kinds)
+    : context_(context), shader_name_(std::move(shader_name)), counter_kinds_(counter_kinds) {
   VkDevice device = context.device();
   VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   alloc.commandPool = context.command_pool();
@@ -70,8 +75,8 @@ void VulkanFrameRunner::set_scene(const Scene& scene, std::vector<KernelBinding>
   width_ = height_ = 0;
 }
 
-void VulkanFrameRunner::prepare_outputs(uint32_t width, uint32_t height, RenderMode mode) {
-  if (kernel_ && width == width_ && height == height_ && mode == mode_) return;
+void VulkanFrameRunner::prepare_outputs(uint32_t width, uint32_t height, RenderMode mode, bool counters) {
+  if (kernel_ && width == width_ && height == height_ && mode == mode_ && counters == counting_) return;
   kernel_.reset();
   // whitted: a ray stack and a state per invocation of a tile (the other modes use neither).
   const bool whitted = mode == RenderMode::Whitted;
@@ -87,27 +92,34 @@ void VulkanFrameRunner::prepare_outputs(uint32_t width, uint32_t height, RenderM
   // StateBlock: the pending flag (padded to the struct alignment), then a state per slot.
   states_ = GpuBuffer(context_, sizeof(glm::uvec4) + slots * sizeof(shading::PixelState),
                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Use::Readback, "whitted pixel states");
+  // Only instrumented kernels use it; the others get a placeholder (a binding needs a buffer).
+  counters_ = GpuBuffer(context_, (counters ? pixels : 1) * COUNTER_KINDS * sizeof(uint32_t),
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Use::Readback, "work counters");
   std::vector<KernelBinding> bindings = {
       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &frame_},  {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &materials_},
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &lights_}, {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &color_},
       {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &aov_},    {5, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, &texels_},
       {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &stacks_}, {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &states_},
       {30, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &implicit_objects_},
-      {31, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &implicit_nodes_}};
+      {31, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &implicit_nodes_},
+      {COUNTERS_BINDING, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &counters_}};
   bindings.insert(bindings.end(), scene_bindings_.begin(), scene_bindings_.end());
-  // One kernel per mode (and textures or not, implicit objects or not), so that the compiler drops
-  // the code a frame cannot use: on lavapipe, branching on them at run time cost ~80 ms per 720p frame.
-  std::vector<uint32_t>& spirv = spirv_[static_cast<size_t>(mode)];
+  // One kernel per mode (and textures or not, implicit objects or not, counters or not), so that
+  // the compiler drops the code a frame cannot use: on lavapipe, branching on them at run time
+  // cost ~80 ms per 720p frame.
+  std::vector<uint32_t>& spirv = spirv_[2 * static_cast<size_t>(mode) + counters];
   if (spirv.empty())
     spirv = compile_compute_shader(shader_name_, "#define SHADING_MODE " + std::to_string(static_cast<int>(mode)) +
                                                      "u\n#define SHADING_TEXTURES " +
                                                      (scene_->texels.empty() ? "false" : "true") +
                                                      "\n#define SHADING_IMPLICITS " +
-                                                     (scene_->implicits.empty() ? "false" : "true") + "\n");
+                                                     (scene_->implicits.empty() ? "false" : "true") +
+                                                     "\n#define COUNTERS " + (counters ? "1" : "0") + "\n");
   kernel_ = std::make_unique<ComputeKernel>(context_, spirv, bindings, static_cast<uint32_t>(sizeof(glm::uvec4)));
   width_ = width;
   height_ = height;
   mode_ = mode;
+  counting_ = counters;
 }
 
 void VulkanFrameRunner::submit(const std::vector<glm::uvec4>& dispatches, FrameResult& result) {
@@ -162,7 +174,7 @@ void VulkanFrameRunner::submit(const std::vector<glm::uvec4>& dispatches, FrameR
 FrameResult VulkanFrameRunner::run(const FrameRequest& request) {
   if (!scene_) throw Error("internal: render before prepare");
   const bool whitted = request.mode == RenderMode::Whitted;
-  prepare_outputs(request.width, request.height, request.mode);
+  prepare_outputs(request.width, request.height, request.mode, request.counters);
   const ShadingInputs inputs = make_shading_inputs(*scene_, request);
   frame_.write(&inputs.frame, sizeof(inputs.frame));
 
@@ -171,13 +183,13 @@ FrameResult VulkanFrameRunner::run(const FrameRequest& request) {
   FrameResult result;
   std::vector<glm::uvec4> tiles;
   for (uint32_t y = 0; y < request.height; y += kTileSize)
-    for (uint32_t x = 0; x < request.width; x += kTileSize) tiles.emplace_back(x, y, 0u, 0u);
+    for (uint32_t x = 0; x < request.width; x += kTileSize) tiles.emplace_back(x, y, 0u, kLoopProbeTrips);
   if (!whitted) submit(tiles, result);
   for (size_t i = 0; whitted && i < tiles.size(); ++i) {
     for (uint32_t pass = 0, pending = 1; pending != 0; ++pass) {
       pending = 0;
       states_.write(&pending, sizeof(pending));
-      submit({glm::uvec4(tiles[i].x, tiles[i].y, pass, 0u)}, result);
+      submit({glm::uvec4(tiles[i].x, tiles[i].y, pass, kLoopProbeTrips)}, result);
       states_.read(&pending, sizeof(pending));
     }
   }
@@ -185,7 +197,16 @@ FrameResult VulkanFrameRunner::run(const FrameRequest& request) {
   const size_t pixels = static_cast<size_t>(request.width) * request.height;
   std::vector<shading::GpuAov> aov(pixels);
   aov_.read(aov.data(), pixels * sizeof(shading::GpuAov));
-  for (const shading::GpuAov& a : aov) result.rays += a.ids.z;
+  for (const shading::GpuAov& a : aov) {
+    result.rays += a.ids.z;
+    result.truncated_pixels += a.ids.w;
+  }
+  std::vector<uint32_t> counts;
+  if (request.counters) {
+    counts.resize(pixels * COUNTER_KINDS);
+    counters_.read(counts.data(), counts.size() * sizeof(uint32_t));
+    result.counters = sum_counters(counts, counter_kinds_);
+  }
   if (request.readback) {
     FrameImages& img = result.images;
     img.width = request.width;
@@ -202,6 +223,7 @@ FrameResult VulkanFrameRunner::run(const FrameRequest& request) {
       img.instance_id[i] = aov[i].ids.x;
       img.primitive_id[i] = aov[i].ids.y;
     }
+    img.steps = pixel_steps(counts, counter_kinds_);
   }
   return result;
 }

@@ -20,7 +20,8 @@ class VulkanFrameRunner {
  public:
   static constexpr uint32_t kTileSize = 256;  // pixels per side of one dispatch
 
-  VulkanFrameRunner(VulkanContext& context, std::string shader_name);
+  // counter_kinds: the work counters the kernel counts (bit k for COUNTER kind k).
+  VulkanFrameRunner(VulkanContext& context, std::string shader_name, uint32_t counter_kinds);
   ~VulkanFrameRunner();
   VulkanFrameRunner(const VulkanFrameRunner&) = delete;
   VulkanFrameRunner& operator=(const VulkanFrameRunner&) = delete;
@@ -30,18 +31,21 @@ class VulkanFrameRunner {
   FrameResult run(const FrameRequest& request);
 
  private:
-  void prepare_outputs(uint32_t width, uint32_t height, RenderMode mode);
+  void prepare_outputs(uint32_t width, uint32_t height, RenderMode mode, bool counters);
   // Records `dispatches` (tile x, y, whitted pass), submits, waits; adds the times to `result`.
   void submit(const std::vector<glm::uvec4>& dispatches, FrameResult& result);
 
   VulkanContext& context_;
   std::string shader_name_;
-  std::array<std::vector<uint32_t>, 3> spirv_;  // per RenderMode, compiled on first use
+  uint32_t counter_kinds_;
+  std::array<std::vector<uint32_t>, 6> spirv_;  // per RenderMode, with and without counters; compiled on first use
   const Scene* scene_ = nullptr;
   std::vector<KernelBinding> scene_bindings_;
-  GpuBuffer frame_, materials_, lights_, texels_, implicit_objects_, implicit_nodes_, color_, aov_, stacks_, states_;
+  GpuBuffer frame_, materials_, lights_, texels_, implicit_objects_, implicit_nodes_, color_, aov_, stacks_, states_,
+      counters_;
   uint32_t width_ = 0, height_ = 0;
   RenderMode mode_ = RenderMode::Primary;
+  bool counting_ = false;
   std::unique_ptr<ComputeKernel> kernel_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;

@@ -1,0 +1,11 @@
+// Work counters of instrumented frames (README "Counters"). VulkanFrameRunner compiles those
+// kernels with COUNTERS 1: the backend's trace code adds its work to `counted` with COUNT, and
+// render_main.glsl adds `counted` to the pixel's entry of the counter buffer. Otherwise COUNT is
+// empty, so timed frames pay nothing.
+#if COUNTERS
+layout(std430, binding = COUNTERS_BINDING) buffer CounterBlock { uint pixel_counters[]; };  // COUNTER_KINDS per pixel
+uint counted[COUNTER_KINDS] = uint[COUNTER_KINDS](0u, 0u, 0u, 0u, 0u);
+#define COUNT(kind, n) counted[kind] += (n)
+#else
+#define COUNT(kind, n)
+#endif

@@ -1,0 +1,33 @@
+#pragma once
+// Work counters of instrumented frames (FrameRequest::counters; README "Counters"): which
+// counters a backend has, and the frame totals from the per-pixel counts.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "renderers/shading/gpu_types.h"
+
+namespace sdfbench {
+
+// Frame totals indexed by COUNTER_*; a counter the backend does not have (tri-aabb takes no
+// sphere-tracing steps) or cannot see (Embree exposes no traversal counts) stays empty.
+using WorkCounters = std::array<std::optional<uint64_t>, COUNTER_KINDS>;
+
+// "steps", "instance_evals", "triangle_evals", "aabb_tests", "triangle_tests": the CSV's
+// <name>_per_ray columns and what `render --counters` prints.
+const std::array<const char*, COUNTER_KINDS>& counter_names();
+
+// Which counters a backend has: bit k for COUNTER kind k.
+inline constexpr uint32_t counter_bit(uint32_t kind) { return 1u << kind; }
+inline constexpr uint32_t kSdfCounters = counter_bit(COUNTER_STEPS) | counter_bit(COUNTER_INSTANCE_EVALS) |
+                                         counter_bit(COUNTER_TRIANGLE_EVALS) | counter_bit(COUNTER_AABB_TESTS);
+inline constexpr uint32_t kTriAabbCounters = counter_bit(COUNTER_AABB_TESTS) | counter_bit(COUNTER_TRIANGLE_TESTS);
+
+// Sums `pixel_counts` (COUNTER_KINDS per pixel) over the frame for the counters in `kinds`.
+WorkCounters sum_counters(const std::vector<uint32_t>& pixel_counts, uint32_t kinds);
+
+// The steps of each pixel (the heat map), when the backend counts steps; else empty.
+std::vector<uint32_t> pixel_steps(const std::vector<uint32_t>& pixel_counts, uint32_t kinds);
+
+}  // namespace sdfbench
