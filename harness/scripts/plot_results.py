@@ -6,7 +6,8 @@
 Writes, for whatever the CSVs contain:
   fps_vs_objects_<mode>.png   FPS vs object count (log-log), one panel per mesh, one line per backend
   thesis_vs_measured.png      each thesis table: our FPS and the thesis' FPS vs object count, per mesh
-  sweep_<metric>.png          sweep heat maps: hash cell x octree depth -> FPS and steps/ray
+  sweep_<metric>.png          sweep heat maps: hash cell x octree depth -> FPS, steps/ray and
+                              instance evaluations/ray
 Rows flagged as disagreeing with the reference are drawn hollow; budget-cut rows get a dagger.
 """
 import argparse
@@ -130,7 +131,8 @@ def sweep_heatmaps(rows, out_dir):
         return
     cells = sorted({float(r["hash_cell"]) for r in sweep})
     depths = sorted({int(float(r["octree_depth"])) for r in sweep})
-    for metric, title in (("fps", "FPS"), ("steps_per_ray", "sphere-tracing steps per ray")):
+    for metric, title in (("fps", "FPS"), ("steps_per_ray", "sphere-tracing steps per ray"),
+                          ("instance_evals_per_ray", "instance distance evaluations per ray")):
         grid = [[None for _ in cells] for _ in depths]
         for r in sweep:
             value = number(r[metric])
