@@ -1,13 +1,10 @@
 // `sdfbench sweep`: the full grid of SDF structure parameters on one scene, each point with its
 // build time, bytes, FPS, Mrays/s, counters and agreement.
-#include <iostream>
 
 #include "harness/cli_common.h"
 #include "harness/commands.h"
-#include "harness/markdown_report.h"
 #include "harness/run_options.h"
 #include "scenes/error.h"
-#include "util/atomic_file.h"
 
 namespace sdfbench {
 namespace {
@@ -24,8 +21,7 @@ void run_sweep(SweepArgs args) {
   if (args.backend.rfind("sdf-", 0) != 0) throw Error("--backend '" + args.backend + "': a sweep varies SDF structures (sdf-octree, sdf-hash, sdf-cpu)");
   create_renderer(args.backend, args.options);  // unknown backend: the usual error
   args.run.settings.check_size = parse_size(args.run.check_size);
-  const PlanOptions plan_options = args.run.plan();
-  if (!args.run.markdown.empty()) check_output_path(args.run.markdown, "--markdown");
+  args.run.plan();  // a bad --shard fails before the plan is built
   BenchConfig base;
   base.table = "sweep";
   base.scene = args.scene;
@@ -49,11 +45,7 @@ void run_sweep(SweepArgs args) {
           if (min_objects < 1) throw Error("--octree-min-objects: values must be >= 1");
           plan.push_back(c);
         }
-  std::cerr << plan.size() << " configurations\n";
-  BenchmarkRunner runner(args.run.settings);
-  const CsvTable rows = run_plan(plan, runner, plan_options);
-  write_markdown(args.run.markdown, rows);
-  std::cout << "\n" << markdown_report(rows, ThesisTables::load_default());
+  run_and_report(plan, args.run);
 }
 
 }  // namespace

@@ -1,14 +1,10 @@
 // `sdfbench table`: the thesis' FPS tables 6.1-6.3 over meshes x object counts, every backend
 // beside them in the same mode, thesis values alongside.
-#include <iostream>
-
 #include "harness/cli_common.h"
 #include "harness/commands.h"
-#include "harness/markdown_report.h"
 #include "harness/run_options.h"
 #include "harness/thesis_tables.h"
 #include "scenes/error.h"
-#include "util/atomic_file.h"
 #include "scenes/mesh.h"
 
 namespace sdfbench {
@@ -74,16 +70,8 @@ void run_table(TableArgs args) {
     args.run.settings.budget_s = std::min(args.run.settings.budget_s, 20.0);
   }
   args.run.settings.check_size = parse_size(args.run.check_size);
-  const PlanOptions plan_options = args.run.plan();
-  if (!args.run.markdown.empty()) check_output_path(args.run.markdown, "--markdown");
-  const std::vector<BenchConfig> plan = table_plan(args);
-  std::cerr << plan.size() << " configurations";
-  if (plan_options.shard.count > 1) std::cerr << " (this is shard " << plan_options.shard.index << "/" << plan_options.shard.count << ")";
-  std::cerr << "\n";
-  BenchmarkRunner runner(args.run.settings);
-  const CsvTable rows = run_plan(plan, runner, plan_options);
-  write_markdown(args.run.markdown, rows);
-  std::cout << "\n" << markdown_report(rows, ThesisTables::load_default());
+  args.run.plan();  // a bad --shard fails before the plan is built
+  run_and_report(table_plan(args), args.run);
 }
 
 }  // namespace

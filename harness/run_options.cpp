@@ -1,5 +1,7 @@
 #include "harness/run_options.h"
 
+#include <iostream>
+
 #include "harness/markdown_report.h"
 #include "harness/thesis_tables.h"
 #include "util/atomic_file.h"
@@ -32,6 +34,18 @@ void write_markdown(const std::string& path, const CsvTable& rows) {
   if (path.empty()) return;
   const std::string text = markdown_report(rows, ThesisTables::load_default());
   write_file_atomically(path, std::as_bytes(std::span(text.data(), text.size())));
+}
+
+void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& options) {
+  const PlanOptions plan_options = options.plan();
+  if (!options.markdown.empty()) check_output_path(options.markdown, "--markdown");
+  std::cerr << plan.size() << " configurations";
+  if (plan_options.shard.count > 1) std::cerr << " (this is shard " << plan_options.shard.index << "/" << plan_options.shard.count << ")";
+  std::cerr << "\n";
+  BenchmarkRunner runner(options.settings);
+  const CsvTable rows = run_plan(plan, runner, plan_options);
+  write_markdown(options.markdown, rows);
+  std::cout << "\n" << markdown_report(rows, ThesisTables::load_default());
 }
 
 }  // namespace sdfbench

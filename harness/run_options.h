@@ -22,4 +22,7 @@ void add_run_options(CLI::App& command, RunOptions& options);
 // Writes the markdown report of `rows` (with the thesis' values) atomically, if a path was given.
 void write_markdown(const std::string& path, const CsvTable& rows);
 
+// Runs `plan` as `options` say (shard, resume, CSV), then writes and prints the markdown report.
+void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& options);
+
 }  // namespace sdfbench

@@ -122,16 +122,20 @@ TEST(SceneHash, BuildIsDeterministic) {
   ASSERT_EQ(a.hash.nodes.size(), b.hash.nodes.size());
 }
 
-TEST(SphereTracer, CpuReferenceMatchesEmbreeOnBunny100) {
-  const Scene scene = make_thesis_scene({"bunny", 100, 1});
+// The CPU sphere tracer's primary frame vs Embree's at 160x90.
+Agreement sdf_cpu_vs_embree(const Scene& scene, const sdf::SceneHashParams& params) {
   BackendOptions options;
-  options.scene_hash = hash_params(10.0f, 4);
+  options.scene_hash = params;
   auto reference = create_renderer("embree", options);
   auto traced = create_renderer("sdf-cpu", options);
   reference->prepare(scene);
   traced->prepare(scene);
   const FrameRequest request{160, 90, RenderMode::Primary, true};
-  const Agreement g = compare_frames(traced->render(request).images, reference->render(request).images);
+  return compare_frames(traced->render(request).images, reference->render(request).images);
+}
+
+TEST(SphereTracer, CpuReferenceMatchesEmbreeOnBunny100) {
+  const Agreement g = sdf_cpu_vs_embree(make_thesis_scene({"bunny", 100, 1}), hash_params(10.0f, 4));
   EXPECT_GE(g.hit_percent, 99.5);
   EXPECT_GE(g.id_percent, 99.0);
   EXPECT_LE(g.depth_p99, 1e-3);
@@ -142,15 +146,7 @@ TEST(SphereTracer, CpuReferenceMatchesEmbreeOnBunny100) {
 // step must advance at least epsilon, or those rays stall until max steps and miss (this
 // scene lost 0.6 % of its hit mask that way).
 TEST(SphereTracer, RaysDoNotStallWhereTheyEnterATightHashBox) {
-  const Scene scene = load_scene(data_dir() / "fig6_3.json");
-  BackendOptions options;
-  options.scene_hash = hash_params(1.0f, 0);
-  auto reference = create_renderer("embree", options);
-  auto traced = create_renderer("sdf-cpu", options);
-  reference->prepare(scene);
-  traced->prepare(scene);
-  const FrameRequest request{160, 90, RenderMode::Primary, true};
-  const Agreement g = compare_frames(traced->render(request).images, reference->render(request).images);
+  const Agreement g = sdf_cpu_vs_embree(load_scene(data_dir() / "fig6_3.json"), hash_params(1.0f, 0));
   EXPECT_GE(g.hit_percent, 99.9);
   EXPECT_GE(g.id_percent, 99.5);
 }
