@@ -13,6 +13,7 @@
 #include "scenes/error.h"
 #include "scenes/mesh.h"
 #include "scenes/random.h"
+#include "tests/grid_equality.h"
 #include "tests/test_support.h"
 
 namespace sdfbench::sdf {
@@ -270,15 +271,7 @@ TEST(MeshDistanceGrid, BuildIsDeterministic) {
   const Mesh mesh = load_obj(builtin_mesh_path("teapot"), "teapot");
   MeshGridParams params;
   params.cells_per_extent = 20;
-  const MeshDistanceGrid a = build_mesh_distance_grid(mesh, params), b = build_mesh_distance_grid(mesh, params);
-  EXPECT_EQ(a.origin, b.origin);
-  EXPECT_EQ(a.dims, b.dims);
-  EXPECT_EQ(a.cell_size, b.cell_size);
-  EXPECT_EQ(a.cell_begin, b.cell_begin);
-  EXPECT_EQ(a.cell_triangles, b.cell_triangles);
-  EXPECT_EQ(a.face_normals, b.face_normals);
-  EXPECT_EQ(a.edge_normals, b.edge_normals);
-  EXPECT_EQ(a.vertex_normals, b.vertex_normals);
+  test::expect_same_grid(build_mesh_distance_grid(mesh, params), build_mesh_distance_grid(mesh, params));
 }
 
 TEST(MeshDistanceGrid, BadParametersAreErrors) {

@@ -13,6 +13,7 @@
 #include "scenes/error.h"
 #include "scenes/random.h"
 #include "scenes/scene_source.h"
+#include "tests/grid_equality.h"
 #include "tests/test_support.h"
 
 namespace sdfbench {
@@ -105,16 +106,7 @@ TEST_F(SdfCacheTest, RoundTripIsBitIdentical) {
   const fs::path path = write_valid();
   const sdf::SceneSdf loaded = sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash());
   ASSERT_EQ(loaded.mesh_grids.size(), sdf_->mesh_grids.size());
-  const sdf::MeshDistanceGrid& a = sdf_->mesh_grids[0];
-  const sdf::MeshDistanceGrid& b = loaded.mesh_grids[0];
-  EXPECT_EQ(a.origin, b.origin);
-  EXPECT_EQ(a.cell_size, b.cell_size);
-  EXPECT_EQ(a.dims, b.dims);
-  EXPECT_EQ(a.cell_begin, b.cell_begin);
-  EXPECT_EQ(a.cell_triangles, b.cell_triangles);
-  EXPECT_EQ(a.face_normals, b.face_normals);
-  EXPECT_EQ(a.edge_normals, b.edge_normals);
-  EXPECT_EQ(a.vertex_normals, b.vertex_normals);
+  test::expect_same_grid(sdf_->mesh_grids[0], loaded.mesh_grids[0]);
   const sdf::SceneHash& h = sdf_->hash;
   const sdf::SceneHash& g = loaded.hash;
   EXPECT_EQ(h.origin, g.origin);

@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "scenes/transform.h"
+
 namespace sdfbench::sdf {
 namespace {
 
@@ -15,12 +17,7 @@ float box_distance(const Aabb& box, const glm::vec3& p) {
 // instance's surface or than the bound the mesh grid returns outside its box (the distance to
 // that rotated box), so a distance to it that cannot beat the best so far safely skips the instance.
 Aabb enclosing_box(const Aabb& bounds, const glm::mat4& object_to_world) {
-  Aabb box;
-  for (int k = 0; k < 8; ++k) {
-    const glm::vec3 corner((k & 1) ? bounds.max.x : bounds.min.x, (k & 2) ? bounds.max.y : bounds.min.y,
-                           (k & 4) ? bounds.max.z : bounds.min.z);
-    box.extend(glm::vec3(object_to_world * glm::vec4(corner, 1.0f)));
-  }
+  const Aabb box = transform_box(bounds, object_to_world);
   const glm::vec3 pad(1e-5f * glm::length(box.extent()));  // float rounding stays on the safe side
   return Aabb{box.min - pad, box.max + pad};
 }
