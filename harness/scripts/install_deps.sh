@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # Installs every build and run dependency from Debian 12's packages (DESIGN.md, "Dependencies").
+# Mesa's Vulkan drivers come from Debian's bookworm-backports suite: its lavapipe (Mesa 25) has
+# no per-invocation loop cap and has the ray-tracing extensions; Debian 12's own Mesa 22.3 caps
+# every shader invocation at 65535 loop iterations. The suite is added in a sources file of its
+# own, only when no configured source already provides it; nothing else on the system changes.
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
-  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
+  libvulkan-dev vulkan-validationlayers vulkan-tools
   glslang-dev glslang-tools libglm-dev
   libembree-dev libtbb-dev
   libopenimageio-dev openimageio-tools
@@ -11,16 +15,64 @@ packages=(
   libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libmeshoptimizer-dev
   python3-matplotlib
 )
+# Installed from bookworm-backports (libdrm at the version that Mesa 25 needs).
+backports_packages=(mesa-vulkan-drivers libdrm2 libdrm-amdgpu1)
+min_mesa_version="25"
+backports_sources=/etc/apt/sources.list.d/sdfbench-bookworm-backports.sources
+
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+
+installed_version() {
+  { dpkg-query -W -f='${Status} ${Version}' "$1" 2>/dev/null || true; } | sed -n 's/^install ok installed //p'
+}
+
+backports_configured() {
+  grep -rqsE '(^|[[:space:]])bookworm-backports([[:space:]]|$)' /etc/apt/sources.list /etc/apt/sources.list.d/
+}
+
 missing=()
 for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  [ -n "$(installed_version "$p")" ] || missing+=("$p")
 done
-if [ ${#missing[@]} -eq 0 ]; then
-  echo "install_deps: all ${#packages[@]} packages already installed"
+mesa_version="$(installed_version mesa-vulkan-drivers)"
+mesa_ok=false
+if [ -n "$mesa_version" ] && dpkg --compare-versions "$mesa_version" ge "$min_mesa_version"; then
+  mesa_ok=true
+fi
+if [ ${#missing[@]} -eq 0 ] && $mesa_ok; then
+  echo "install_deps: all ${#packages[@]} packages installed; mesa-vulkan-drivers $mesa_version"
   exit 0
 fi
-echo "install_deps: installing ${missing[*]}"
+
+if ! $mesa_ok && ! backports_configured; then
+  echo "install_deps: adding Debian's bookworm-backports suite ($backports_sources)"
+  $sudo tee "$backports_sources" >/dev/null <<'EOF'
+# Added by sdfbench's install_deps.sh: Mesa 25 (lavapipe without the loop cap, ray tracing).
+Types: deb
+URIs: http://deb.debian.org/debian
+Suites: bookworm-backports
+Components: main
+Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
+EOF
+fi
+
+echo "install_deps: apt-get update"
 $sudo apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "install_deps: installing ${missing[*]}"
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+if ! $mesa_ok; then
+  policy="$(apt-cache policy mesa-vulkan-drivers)"
+  if ! grep -q 'bookworm-backports' <<<"$policy"; then
+    echo "install_deps: error: Debian's bookworm-backports suite cannot be reached (apt-get update" \
+      "did not list it); sdfbench needs its mesa-vulkan-drivers (>= $min_mesa_version). Check the" \
+      "network or mirror for $backports_sources" >&2
+    exit 1
+  fi
+  echo "install_deps: installing ${backports_packages[*]} from bookworm-backports"
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
+    -t bookworm-backports "${backports_packages[@]}"
+fi
+echo "install_deps: mesa-vulkan-drivers $(installed_version mesa-vulkan-drivers)"

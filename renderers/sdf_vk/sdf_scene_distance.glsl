@@ -6,16 +6,16 @@
 #include "sdf_triangle.glsl"
 
 layout(std140, binding = 8) uniform SdfBlock { SdfParams sdf; };
-layout(binding = 9) uniform usamplerBuffer hash_cells;        // R32UI node word per hash cell
-layout(binding = 10) uniform usamplerBuffer octree_nodes;     // R32UI node words below the roots
-layout(binding = 11) uniform usamplerBuffer instance_lists;   // R32UI count, then instances
-layout(binding = 12) uniform usamplerBuffer instance_records; // RGBA32UI, SDF_INSTANCE_TEXELS each
-layout(binding = 13) uniform usamplerBuffer mesh_records;     // RGBA32UI, SDF_MESH_TEXELS each
-layout(binding = 14) uniform usamplerBuffer grid_cells;       // RG32UI (begin, end) per grid cell
-layout(binding = 15) uniform usamplerBuffer grid_triangles;   // R32UI global triangle indices
-layout(binding = 16) uniform samplerBuffer tri_vertices;      // RGBA32F, 3 per triangle (object space)
-layout(binding = 17) uniform samplerBuffer tri_normals;       // RGBA32F, 3 per triangle (vertex normals)
-layout(binding = 18) uniform samplerBuffer tri_spheres;       // RGBA32F bounding sphere per triangle
+layout(binding = 9) uniform utextureBuffer hash_cells;        // R32UI node word per hash cell
+layout(binding = 10) uniform utextureBuffer octree_nodes;     // R32UI node words below the roots
+layout(binding = 11) uniform utextureBuffer instance_lists;   // R32UI count, then instances
+layout(binding = 12) uniform utextureBuffer instance_records; // RGBA32UI, SDF_INSTANCE_TEXELS each
+layout(binding = 13) uniform utextureBuffer mesh_records;     // RGBA32UI, SDF_MESH_TEXELS each
+layout(binding = 14) uniform utextureBuffer grid_cells;       // RG32UI (begin, end) per grid cell
+layout(binding = 15) uniform utextureBuffer grid_triangles;   // R32UI global triangle indices
+layout(binding = 16) uniform textureBuffer tri_vertices;      // RGBA32F, 3 per triangle (object space)
+layout(binding = 17) uniform textureBuffer tri_normals;       // RGBA32F, 3 per triangle (vertex normals)
+layout(binding = 18) uniform textureBuffer tri_spheres;       // RGBA32F bounding sphere per triangle
 
 const float SDF_FAR = 3.0e38f;  // "no surface": one step by it leaves the hash box
 

@@ -1,5 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+// Texel buffers are textureBuffer (no sampler): SPIR-V 1.6 forbids a sampled image of Dim Buffer.
+#extension GL_EXT_samplerless_texture_functions : require
 // The thesis' renderer (chapters 4-5): sphere tracing (Hart 1996) through the scene hash and
 // its octrees, for both sdf-hash (octree depth 0: a leaf per cell) and sdf-octree. The same
 // algorithm as SphereTracer in renderers/sdf/sphere_tracer.cpp, so the images and the work

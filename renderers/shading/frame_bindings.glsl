@@ -9,7 +9,7 @@ layout(std430, binding = 1) readonly buffer MaterialBlock { GpuMaterial material
 layout(std430, binding = 2) readonly buffer LightBlock { GpuLight lights[]; };
 layout(std430, binding = 3) writeonly buffer ColorBlock { vec4 out_color[]; };
 layout(std430, binding = 4) writeonly buffer AovBlock { GpuAov out_aov[]; };
-layout(binding = 5) uniform samplerBuffer texels;  // image textures, linear RGBA (Scene::texels)
+layout(binding = 5) uniform textureBuffer texels;  // image textures, linear RGBA (Scene::texels)
 layout(std430, binding = 30) readonly buffer ImplicitObjectBlock { GpuImplicitObject implicit_objects[]; };
 layout(std430, binding = 31) readonly buffer ImplicitNodeBlock { GpuImplicitNode implicit_nodes[]; };
 

@@ -1,5 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+// Texel buffers are textureBuffer (no sampler): SPIR-V 1.6 forbids a sampled image of Dim Buffer.
+#extension GL_EXT_samplerless_texture_functions : require
 // The thesis' "traditional" ray tracer (chapter 6, table 6.3): for every instance a slab test
 // against its world AABB, then Möller–Trumbore against every triangle of its mesh.
 
@@ -9,8 +11,8 @@
 layout(std430, binding = 8) readonly buffer InstanceBlock { TriInstance instances[]; };
 // Triangle data in texel buffers: lavapipe serves divergent texel fetches far faster than
 // divergent storage-buffer reads (DESIGN.md, measured). 3 texels per triangle.
-layout(binding = 9) uniform samplerBuffer tri_vertices;  // v0, v1, v2 (object space)
-layout(binding = 10) uniform samplerBuffer tri_normals;  // vertex normals n0, n1, n2
+layout(binding = 9) uniform textureBuffer tri_vertices;  // v0, v1, v2 (object space)
+layout(binding = 10) uniform textureBuffer tri_normals;  // vertex normals n0, n1, n2
 
 vec3 safe_inverse(vec3 d) {
   const float tiny = 1e-30f;

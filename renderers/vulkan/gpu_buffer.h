@@ -25,7 +25,7 @@ class GpuBuffer {
 
   void write(const void* data, size_t bytes, size_t offset = 0);
   void read(void* data, size_t bytes, size_t offset = 0) const;
-  // A texel view (for samplerBuffer / usamplerBuffer) of the whole buffer.
+  // A texel view (for textureBuffer / utextureBuffer) of the whole buffer.
   VkBufferView texel_view(VkFormat format, size_t texel_bytes);
 
   VkBuffer handle() const { return buffer_; }
