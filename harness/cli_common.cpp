@@ -31,6 +31,14 @@ void add_backend_options(CLI::App& command, BackendOptions& options) {
       ->check(CLI::Range(1u, 1024u));
   command.add_flag("--validate", options.validation,
                    "enable VK_LAYER_KHRONOS_validation; any validation message makes the command fail");
+  command.add_option_function<std::string>(
+             "--whitted-passes",
+             [&options](const std::string& value) {
+               options.whitted_passes = value == "auto" ? std::nullopt : std::optional<bool>(value == "on");
+             },
+             "whitted on Vulkan: on = one ray per pixel per dispatch (for drivers with a loop cap), off = a pixel's "
+             "whole ray tree in one invocation; auto (default): on only where `sdfbench info` finds a loop cap")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
   add_structure_options(command, options);
   command.add_option("--cache", options.cache.path,
                      "SDF structure cache file: loaded when valid for this scene and these parameters, else built and written")

@@ -7,12 +7,27 @@
 #include "harness/commands.h"
 #include "harness/system_info.h"
 #include "renderers/renderer.h"
+#include "renderers/vulkan/loop_cap_probe.h"
 #include "renderers/vulkan/vulkan_context.h"
 #include "scenes/error.h"
 #include "scenes/mesh.h"
 
 namespace sdfbench {
 namespace {
+
+// Runs the loop-cap probe on the device: drivers with a cap get whitted in passes and flag (✂)
+// what the cap cuts short (README, "The loop limit").
+std::string describe_loop_cap(const VulkanDeviceInfo& device) {
+  try {
+    const VulkanContext context(VulkanContext::Options{std::to_string(device.index), false});
+    if (!has_loop_cap(context)) return "none (a loop of " + std::to_string(kLoopCapProbeTrips) + " iterations ran in full)";
+    return "yes, a loop of " + std::to_string(kLoopCapProbeTrips) +
+           " iterations stopped short (lavapipe before Mesa 25: 65535 per invocation); whitted runs in passes, "
+           "cut pixels are flagged";
+  } catch (const Error& e) {
+    return std::string("not probed: ") + e.what();
+  }
+}
 
 void print_info() {
   std::cout << "sdfbench " << SDFBENCH_VERSION << " (commit " << git_commit() << ")\n\n";
@@ -30,6 +45,7 @@ void print_info() {
       default_marked = default_marked || is_default;
       std::cout << "  " << d.index << ": " << d.name << "\n     type " << d.type << ", driver " << d.driver << " ("
                 << d.driver_info << "), Vulkan " << d.api_version << (is_default ? "  [default]" : "") << "\n";
+      std::cout << "     loop cap: " << describe_loop_cap(d) << "\n";
     }
   } catch (const Error& e) {
     std::cout << "  unavailable: " << e.what() << "\n";

@@ -26,6 +26,9 @@ struct BackendOptions {
   std::string device = "lavapipe";  // Vulkan device: "lavapipe", "gpu", an index or a name substring
   unsigned threads = 0;             // CPU worker threads (Embree); 0: as many as lavapipe uses
   bool validation = false;          // enable VK_LAYER_KHRONOS_validation and count its messages
+  // whitted on Vulkan: one ray per pixel per dispatch (true) or each pixel's whole ray tree in one
+  // invocation (false); unset: passes only on a device with a loop cap (loop_cap_probe.h).
+  std::optional<bool> whitted_passes;
   // SDF backends: structure and sphere-tracing parameters (the CLI flags of the same names).
   sdf::MeshGridParams mesh_grid;
   sdf::SceneHashParams scene_hash;  // defaults: the thesis' octree configuration (table 6.1)

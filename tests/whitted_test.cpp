@@ -81,6 +81,32 @@ TEST(Whitted, EveryBackendAgreesWithEmbree) {
   }
 }
 
+// Whitted in passes (one ray per pixel per dispatch, for drivers with a loop cap) and in one
+// invocation per pixel trace the same rays in the same order: the images are identical.
+TEST(Whitted, PassesAndOneInvocationGiveTheSameImage) {
+  const Scene scene = mirror_and_glass_scene();
+  for (const char* backend : {"tri-aabb", "sdf-octree"}) {
+    FrameResult frames[2];
+    for (bool passes : {false, true}) {
+      BackendOptions options;
+      options.whitted_passes = passes;
+      auto renderer = create_renderer(backend, options);
+      renderer->prepare(scene);
+      frames[passes] = renderer->render(FrameRequest{kWidth, kHeight, RenderMode::Whitted, true, {}, true});
+    }
+    EXPECT_EQ(frames[0].images.color, frames[1].images.color) << backend;
+    EXPECT_EQ(frames[0].images.instance_id, frames[1].images.instance_id) << backend;
+    EXPECT_EQ(frames[0].rays, frames[1].rays) << backend;
+    EXPECT_GT(frames[0].rays, uint64_t{kWidth} * kHeight) << backend;  // secondary rays were traced
+    EXPECT_EQ(frames[0].counters, frames[1].counters) << backend;
+  }
+  const std::string command = "render --scene thesis:sphere:5 --backend tri-aabb --size 16x9 --frames 1 --mode whitted";
+  EXPECT_EQ(test::run_sdfbench(command + " --whitted-passes on").exit_code, 0);
+  const test::CommandResult bad = test::run_sdfbench(command + " --whitted-passes sometimes");
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("--whitted-passes"), std::string::npos) << bad.output;
+}
+
 TEST(Whitted, CommandLineTakesModeAndMaxDepth) {
   const test::CommandResult r = test::run_sdfbench(
       "compare --scene thesis:sphere:5 --backends embree,tri-aabb --size 32x18 --mode whitted --max-depth 2");

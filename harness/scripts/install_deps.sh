@@ -4,6 +4,8 @@
 # no per-invocation loop cap and has the ray-tracing extensions; Debian 12's own Mesa 22.3 caps
 # every shader invocation at 65535 loop iterations. The suite is added in a sources file of its
 # own, only when no configured source already provides it; nothing else on the system changes.
+# The tests of the loop-cap guard also get Debian 12's own lavapipe, unpacked into .deps/
+# (fetch_old_lavapipe.sh).
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
@@ -40,8 +42,10 @@ mesa_ok=false
 if [ -n "$mesa_version" ] && dpkg --compare-versions "$mesa_version" ge "$min_mesa_version"; then
   mesa_ok=true
 fi
+old_lavapipe="$(dirname "$0")/fetch_old_lavapipe.sh"
 if [ ${#missing[@]} -eq 0 ] && $mesa_ok; then
   echo "install_deps: all ${#packages[@]} packages installed; mesa-vulkan-drivers $mesa_version"
+  "$old_lavapipe"
   exit 0
 fi
 
@@ -76,3 +80,5 @@ if ! $mesa_ok; then
     -t bookworm-backports "${backports_packages[@]}"
 fi
 echo "install_deps: mesa-vulkan-drivers $(installed_version mesa-vulkan-drivers)"
+# Debian 12's own Mesa 22.3 lavapipe, unpacked (not installed) for the loop-cap tests.
+"$old_lavapipe"

@@ -1,22 +1,47 @@
 // Entry point shared by the Vulkan backends. The backend's .comp file declares its own
 // scene bindings (binding >= 8) and closest_hit/any_hit, then includes this file.
 // VulkanFrameRunner compiles it per mode and scene: SHADING_MODE (MODE_*), SHADING_TEXTURES and
-// SHADING_IMPLICITS (bool), COUNTERS (0 or 1, work_counters.glsl).
+// SHADING_IMPLICITS (bool), COUNTERS (0 or 1, work_counters.glsl), WHITTED_PASSES (0 or 1).
+//
+// whitted traces a pixel's whole ray tree in one invocation, its ray stack in registers /
+// private memory. On drivers with a per-invocation loop cap (lavapipe before Mesa 25:
+// loop_cap_probe.h) WHITTED_PASSES 1 traces one ray of each pixel per dispatch instead, the
+// stack and the pixel's state kept in buffers between passes.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(push_constant) uniform TilePush {
   uvec4 tile;  // xy: pixel offset of this dispatch's tile; z: whitted pass (0: the first); w: 2 (loop_limit_hit)
 } push;
 
-// whitted, per invocation of a tile: its ray stack and its state between passes; `pending` is
-// raised while any pixel of the tile has rays left.
+// WHITTED_PASSES, per invocation of a tile: its ray stack and its state between passes;
+// `pending` is raised while any pixel of the tile has rays left.
 layout(std430, binding = 6) buffer StackBlock { PathEntry stacks[]; };
 layout(std430, binding = 7) buffer StateBlock {
   uint pending;
   PixelState states[];
 };
 
+#if WHITTED_PASSES
 uint stack_base;
+
+PathEntry stack_load(uint i) {
+  return stacks[stack_base + i];
+}
+
+void stack_store(uint i, PathEntry e) {
+  stacks[stack_base + i] = e;
+}
+#else
+PathEntry stack[STACK_SIZE];
+
+PathEntry stack_load(uint i) {
+  return stack[i];
+}
+
+void stack_store(uint i, PathEntry e) {
+  stack[i] = e;
+}
+#endif
 
 uint shading_mode() {
   return SHADING_MODE;
@@ -28,14 +53,6 @@ bool has_textures() {
 
 bool has_implicits() {
   return SHADING_IMPLICITS;
-}
-
-PathEntry stack_load(uint i) {
-  return stacks[stack_base + i];
-}
-
-void stack_store(uint i, PathEntry e) {
-  stacks[stack_base + i] = e;
 }
 
 #include "shading.glsl"
@@ -64,8 +81,12 @@ void main() {
   if (pixel.x >= frame.image.x || pixel.y >= frame.image.y) return;
   uint index = pixel.y * frame.image.x + pixel.x;
   uint slot = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
+#if WHITTED_PASSES
   stack_base = slot * STACK_SIZE;
   bool first = SHADING_MODE != MODE_WHITTED || push.tile.z == 0u;
+#else
+  const bool first = true;
+#endif
   PixelState s;
   PixelAov aov;
   PathEntry ray;
@@ -73,13 +94,14 @@ void main() {
     begin_pixel(s, aov);
     ray = primary_ray(pixel);
   } else {
-    // whitted traces one ray of the stack per pass: lavapipe (Mesa 22.3) stops every loop of an
-    // invocation once its loops have run 65535 iterations in all, which a ray tree can exceed.
+    // WHITTED_PASSES: the next ray of the stack.
     s = states[slot];
     if (s.counters.x == 0u) return;
     ray = pop_ray(s);
   }
   trace_ray(ray, s, aov);
+  if (SHADING_MODE == MODE_WHITTED && WHITTED_PASSES == 0)
+    while (s.counters.x > 0u) trace_ray(pop_ray(s), s, aov);
   bool cut = loop_limit_hit();
   if (first) {
     out_aov[index].normal_depth = vec4(aov.normal, aov.depth);
@@ -90,7 +112,7 @@ void main() {
 #if COUNTERS
   store_counters(index, first);
 #endif
-  if (SHADING_MODE == MODE_WHITTED) {
+  if (SHADING_MODE == MODE_WHITTED && WHITTED_PASSES == 1) {
     states[slot] = s;
     if (s.counters.x > 0u) {
       pending = 1u;

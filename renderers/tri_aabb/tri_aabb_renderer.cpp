@@ -8,7 +8,7 @@ namespace shading {
 }
 
 TriAabbRenderer::TriAabbRenderer(const BackendOptions& options)
-    : context_(VulkanContext::Options{options.device, options.validation}), runner_(context_, "tri_aabb.comp", kTriAabbCounters) {}
+    : context_(VulkanContext::Options{options.device, options.validation}), runner_(context_, "tri_aabb.comp", kTriAabbCounters, options.whitted_passes) {}
 
 void TriAabbRenderer::prepare(const Scene& scene) {
   // Triangles of every mesh, concatenated; 3 texels per triangle.

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "renderers/frame_params.h"
+#include "renderers/vulkan/loop_cap_probe.h"
 #include "renderers/vulkan/shader_compiler.h"
 #include "renderers/vulkan/vk_error.h"
 #include "scenes/error.h"
@@ -15,8 +16,12 @@ constexpr uint32_t kLoopProbeTrips = 2;  // the trip count of render_main.glsl's
 
 }  // namespace
 
-VulkanFrameRunner::VulkanFrameRunner(VulkanContext& context, std::string shader_name, uint32_t counter_kinds)
-    : context_(context), shader_name_(std::move(shader_name)), counter_kinds_(counter_kinds) {
+VulkanFrameRunner::VulkanFrameRunner(VulkanContext& context, std::string shader_name, uint32_t counter_kinds,
+                                     std::optional<bool> whitted_passes)
+    : context_(context),
+      shader_name_(std::move(shader_name)),
+      counter_kinds_(counter_kinds),
+      whitted_passes_(whitted_passes ? *whitted_passes : has_loop_cap(context)) {
   VkDevice device = context.device();
   VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   alloc.commandPool = context.command_pool();
@@ -78,10 +83,10 @@ void VulkanFrameRunner::set_scene(const Scene& scene, std::vector<KernelBinding>
 void VulkanFrameRunner::prepare_outputs(uint32_t width, uint32_t height, RenderMode mode, bool counters) {
   if (kernel_ && width == width_ && height == height_ && mode == mode_ && counters == counting_) return;
   kernel_.reset();
-  // whitted: a ray stack and a state per invocation of a tile (the other modes use neither).
-  const bool whitted = mode == RenderMode::Whitted;
+  // whitted in passes: a ray stack and a state per invocation of a tile (nothing else uses them).
+  const bool passes = mode == RenderMode::Whitted && whitted_passes_;
   const VkDeviceSize slots =
-      whitted ? VkDeviceSize{(std::min(width, kTileSize) + 7) / 8 * 8} * std::min(height, kTileSize) : 1;
+      passes ? VkDeviceSize{(std::min(width, kTileSize) + 7) / 8 * 8} * std::min(height, kTileSize) : 1;
   const VkDeviceSize pixels = static_cast<VkDeviceSize>(width) * height;
   color_ = GpuBuffer(context_, pixels * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, GpuBuffer::Use::Readback,
                      "output image");
@@ -114,7 +119,8 @@ void VulkanFrameRunner::prepare_outputs(uint32_t width, uint32_t height, RenderM
                                                      (scene_->texels.empty() ? "false" : "true") +
                                                      "\n#define SHADING_IMPLICITS " +
                                                      (scene_->implicits.empty() ? "false" : "true") +
-                                                     "\n#define COUNTERS " + (counters ? "1" : "0") + "\n");
+                                                     "\n#define COUNTERS " + (counters ? "1" : "0") +
+                                                     "\n#define WHITTED_PASSES " + (whitted_passes_ ? "1" : "0") + "\n");
   kernel_ = std::make_unique<ComputeKernel>(context_, spirv, bindings, static_cast<uint32_t>(sizeof(glm::uvec4)));
   width_ = width;
   height_ = height;
@@ -173,19 +179,19 @@ void VulkanFrameRunner::submit(const std::vector<glm::uvec4>& dispatches, FrameR
 
 FrameResult VulkanFrameRunner::run(const FrameRequest& request) {
   if (!scene_) throw Error("internal: render before prepare");
-  const bool whitted = request.mode == RenderMode::Whitted;
+  const bool passes = request.mode == RenderMode::Whitted && whitted_passes_;
   prepare_outputs(request.width, request.height, request.mode, request.counters);
   const ShadingInputs inputs = make_shading_inputs(*scene_, request);
   frame_.write(&inputs.frame, sizeof(inputs.frame));
 
-  // Tiles keep each dispatch within maxComputeWorkGroupCount and bound its duration. whitted
-  // runs each tile pass after pass, one ray per pixel per pass, until no pixel has rays left.
+  // Tiles keep each dispatch within maxComputeWorkGroupCount and bound its duration. whitted in
+  // passes runs each tile pass after pass, one ray per pixel per pass, until no pixel has rays left.
   FrameResult result;
   std::vector<glm::uvec4> tiles;
   for (uint32_t y = 0; y < request.height; y += kTileSize)
     for (uint32_t x = 0; x < request.width; x += kTileSize) tiles.emplace_back(x, y, 0u, kLoopProbeTrips);
-  if (!whitted) submit(tiles, result);
-  for (size_t i = 0; whitted && i < tiles.size(); ++i) {
+  if (!passes) submit(tiles, result);
+  for (size_t i = 0; passes && i < tiles.size(); ++i) {
     for (uint32_t pass = 0, pending = 1; pending != 0; ++pass) {
       pending = 0;
       states_.write(&pending, sizeof(pending));

@@ -21,7 +21,9 @@ class VulkanFrameRunner {
   static constexpr uint32_t kTileSize = 256;  // pixels per side of one dispatch
 
   // counter_kinds: the work counters the kernel counts (bit k for COUNTER kind k).
-  VulkanFrameRunner(VulkanContext& context, std::string shader_name, uint32_t counter_kinds);
+  // whitted_passes: BackendOptions::whitted_passes (unset: the device's loop cap decides).
+  VulkanFrameRunner(VulkanContext& context, std::string shader_name, uint32_t counter_kinds,
+                    std::optional<bool> whitted_passes);
   ~VulkanFrameRunner();
   VulkanFrameRunner(const VulkanFrameRunner&) = delete;
   VulkanFrameRunner& operator=(const VulkanFrameRunner&) = delete;
@@ -46,6 +48,7 @@ class VulkanFrameRunner {
   uint32_t width_ = 0, height_ = 0;
   RenderMode mode_ = RenderMode::Primary;
   bool counting_ = false;
+  bool whitted_passes_;  // one ray per pixel per dispatch (render_main.glsl, WHITTED_PASSES)
   std::unique_ptr<ComputeKernel> kernel_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
