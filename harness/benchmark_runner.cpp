@@ -45,6 +45,7 @@ Measurement configuration_fields(const BenchConfig& config, size_t run_index) {
     m.octree_depth = p.octree_depth;
     m.octree_min_objects = p.octree_min_objects;
     m.mesh_cell = config.options.mesh_grid.cell_size;
+    m.hit = config.options.tracing.hit == sdf::HitMode::exact ? "exact" : "thesis";
   }
   return m;
 }

@@ -71,10 +71,24 @@ void add_structure_options(CLI::App& command, BackendOptions& options) {
                                                                               {"thesis", sdf::ListRule::Thesis}},
                                           CLI::ignore_case))
       ->group(group);
-  command.add_option("--max-steps", options.tracing.max_steps, "sphere-tracing steps per ray")
+  add_tracing_options(command, options.tracing, group);
+}
+
+void add_tracing_options(CLI::App& command, sdf::SphereTraceParams& tracing, const std::string& group) {
+  command.add_option("--max-steps", tracing.max_steps, "sphere-tracing steps per ray")
       ->capture_default_str()->check(CLI::Range(1u, 1000000u))->group(group);
-  command.add_option("--hit-epsilon", options.tracing.hit_epsilon, "sphere-tracing hit distance, relative to the scene size")
+  command.add_option("--hit-epsilon", tracing.hit_epsilon, "--hit thesis: sphere-tracing hit distance, relative to the scene size")
       ->capture_default_str()->check(CLI::PositiveNumber)->group(group);
+  command.add_option("--hit-footprint", tracing.footprint,
+                     "--hit exact: hit distance as a fraction of a pixel's footprint at the ray's length")
+      ->capture_default_str()->check(CLI::Range(1e-4f, 4.0f))->group(group);
+  command.add_option("--hit", tracing.hit,
+                     "SDF hits: exact (default: the ray's crossing with the triangles listed where it converged) or "
+                     "thesis (the converged point, the closest point's normal and uv)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, sdf::HitMode>{{"exact", sdf::HitMode::exact},
+                                                                             {"thesis", sdf::HitMode::thesis}},
+                                          CLI::ignore_case))
+      ->group(group);
 }
 
 void add_mode_options(CLI::App& command, std::string& mode, std::optional<uint32_t>& max_depth) {

@@ -21,6 +21,8 @@ ImageSize parse_size(const std::string& text);
 void add_backend_options(CLI::App& command, BackendOptions& options);
 // --mesh-cell, --cells-per-extent, --hash-cell, --octree-*, --lists, --max-steps, --hit-epsilon
 void add_structure_options(CLI::App& command, BackendOptions& options);
+// --max-steps, --hit-epsilon, --hit (add_structure_options includes them).
+void add_tracing_options(CLI::App& command, sdf::SphereTraceParams& tracing, const std::string& group);
 
 // --mode primary|shadow|whitted and --max-depth (whitted recursion limit; default: the scene's)
 void add_mode_options(CLI::App& command, std::string& mode, std::optional<uint32_t>& max_depth);

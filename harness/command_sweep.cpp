@@ -66,10 +66,7 @@ void register_sweep_command(CLI::App& app) {
   cmd->add_option("--cells-per-extent", args->options.mesh_grid.cells_per_extent,
                   "mesh grid cells along the mesh's largest extent (with --mesh-cell 0)")
       ->capture_default_str()->check(CLI::Range(1u, 1024u));
-  cmd->add_option("--max-steps", args->options.tracing.max_steps, "sphere-tracing steps per ray")
-      ->capture_default_str()->check(CLI::Range(1u, 1000000u));
-  cmd->add_option("--hit-epsilon", args->options.tracing.hit_epsilon, "sphere-tracing hit distance, relative to the scene size")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+  add_tracing_options(*cmd, args->options.tracing, "SDF tracing");
   add_run_options(*cmd, args->run);
   cmd->add_option("--device", args->options.device, "Vulkan device: lavapipe (default), gpu, an index or a name");
   cmd->add_option("--threads", args->options.threads, "CPU threads (Embree reference, sdf-cpu)")->check(CLI::Range(1u, 1024u));

@@ -15,14 +15,14 @@ std::string number(double v) {
 std::string number(const std::optional<double>& v) { return v ? number(*v) : ""; }
 
 const std::vector<std::string> kKeyColumns = {"table", "scene", "backend", "mode", "max_depth", "width", "height",
-                                              "hash_cell", "octree_depth", "octree_min_objects", "mesh_cell"};
+                                              "hash_cell", "octree_depth", "octree_min_objects", "mesh_cell", "hit"};
 
 }  // namespace
 
 const std::vector<std::string>& measurement_columns() {
   static const std::vector<std::string> columns = {
       "run_index", "table", "scene", "mesh", "triangles", "objects", "backend", "mode", "max_depth", "width", "height",
-      "hash_cell", "octree_depth", "octree_min_objects", "mesh_cell", "frames", "clock", "ms_median", "ms_min", "ms_max",
+      "hash_cell", "octree_depth", "octree_min_objects", "mesh_cell", "hit", "frames", "clock", "ms_median", "ms_min", "ms_max",
       "ms_wall_median", "fps", "mrays_per_s", "rays_per_pixel", "steps_per_ray", "instance_evals_per_ray",
       "triangle_evals_per_ray", "aabb_tests_per_ray", "triangle_tests_per_ray", "prepare_ms", "build_ms", "structure_bytes", "check_size", "hit_agreement",
       "id_agreement", "psnr", "agreement", "budget_cut", "device", "driver", "cpu", "threads", "commit"};
@@ -33,7 +33,7 @@ std::vector<std::string> to_csv_fields(const Measurement& m) {
   return {std::to_string(m.run_index), m.table, m.scene, m.mesh, std::to_string(m.triangles), std::to_string(m.objects),
           m.backend, m.mode, std::to_string(m.max_depth), std::to_string(m.width), std::to_string(m.height),
           number(m.hash_cell), number(m.octree_depth), number(m.octree_min_objects), number(m.mesh_cell),
-          std::to_string(m.frames), m.clock, number(m.ms_median), number(m.ms_min), number(m.ms_max),
+          m.hit, std::to_string(m.frames), m.clock, number(m.ms_median), number(m.ms_min), number(m.ms_max),
           number(m.ms_wall_median), number(m.fps), number(m.mrays_per_s), number(m.rays_per_pixel),
           number(m.steps_per_ray), number(m.instance_evals_per_ray), number(m.triangle_evals_per_ray),
           number(m.aabb_tests_per_ray), number(m.triangle_tests_per_ray),

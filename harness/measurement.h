@@ -17,6 +17,7 @@ struct Measurement {
   unsigned max_depth = 0;
   unsigned width = 0, height = 0;
   std::optional<double> hash_cell, octree_depth, octree_min_objects, mesh_cell;  // SDF backends only
+  std::string hit;  // SDF backends: "exact" or "thesis" (--hit)
   // timing
   unsigned frames = 0;
   std::string clock;  // "device" (GPU timestamps) or "wall"

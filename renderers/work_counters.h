@@ -20,8 +20,10 @@ const std::array<const char*, COUNTER_KINDS>& counter_names();
 
 // Which counters a backend has: bit k for COUNTER kind k.
 inline constexpr uint32_t counter_bit(uint32_t kind) { return 1u << kind; }
+// SDF backends: triangle_tests are the exact hit's ray-triangle tests (--hit exact).
 inline constexpr uint32_t kSdfCounters = counter_bit(COUNTER_STEPS) | counter_bit(COUNTER_INSTANCE_EVALS) |
-                                         counter_bit(COUNTER_TRIANGLE_EVALS) | counter_bit(COUNTER_AABB_TESTS);
+                                         counter_bit(COUNTER_TRIANGLE_EVALS) | counter_bit(COUNTER_AABB_TESTS) |
+                                         counter_bit(COUNTER_TRIANGLE_TESTS);
 inline constexpr uint32_t kTriAabbCounters = counter_bit(COUNTER_AABB_TESTS) | counter_bit(COUNTER_TRIANGLE_TESTS);
 
 // Sums `pixel_counts` (COUNTER_KINDS per pixel) over the frame for the counters in `kinds`.

@@ -69,7 +69,7 @@ TEST(Csv, WriteReadRoundTripThroughAFile) {
 TEST(MeasurementColumns, MatchTheDocumentedListAndFieldCount) {
   const std::vector<std::string>& c = measurement_columns();
   for (const char* required : {"scene", "mesh", "triangles", "objects", "backend", "mode", "width", "height", "hash_cell",
-                               "octree_depth", "octree_min_objects", "mesh_cell", "frames", "ms_median", "ms_min", "ms_max",
+                               "octree_depth", "octree_min_objects", "mesh_cell", "hit", "frames", "ms_median", "ms_min", "ms_max",
                                "fps", "mrays_per_s", "steps_per_ray", "instance_evals_per_ray", "triangle_evals_per_ray",
                                "aabb_tests_per_ray", "triangle_tests_per_ray",
                                "build_ms", "structure_bytes", "hit_agreement", "id_agreement", "psnr", "budget_cut",

@@ -4,6 +4,7 @@
 
 #include "harness/system_info.h"
 #include "renderers/cpu_frame.h"
+#include "renderers/frame_params.h"
 #include "scenes/error.h"
 
 namespace sdfbench {
@@ -29,6 +30,7 @@ std::optional<StructureStats> SdfCpuRenderer::structure_stats() const {
 
 FrameResult SdfCpuRenderer::render(const FrameRequest& request) {
   if (!tracer_) throw Error("internal: render before prepare");
+  tracer_->set_frame(make_shading_inputs(*scene_, request).frame);
   return render_cpu_frame(*tracer_, *scene_, request, threads_, kSdfCounters);
 }
 

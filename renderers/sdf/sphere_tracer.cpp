@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 
 #include "renderers/frame_params.h"
+#include "renderers/sdf/exact_hit.h"
 #include "renderers/sdf/triangle_distance.h"
 
 namespace sdfbench::sdf {
@@ -28,21 +30,25 @@ SphereTracer::SphereTracer(const Scene& scene, const SceneSdf& sdf, const Sphere
       params_(params),
       epsilon_(params.hit_epsilon * scene_scale(scene)) {}
 
-float SphereTracer::march(const shading::Ray& ray, float tmax, SceneDistance& at_hit, shading::PixelCounts* counts) const {
+void SphereTracer::set_frame(const shading::FrameParams& frame) {
+  cone_ = params_.footprint * 2.0f * glm::length(glm::vec3(frame.camera_up)) / static_cast<float>(frame.image.y);
+}
+
+float SphereTracer::epsilon_at(const shading::Ray& ray, float t) const {
+  if (params_.hit == HitMode::thesis) return epsilon_;
+  const glm::vec3 p = glm::abs(ray.origin + t * ray.dir);
+  return std::max(cone_ * t, 1e-6f * std::max(std::max(p.x, p.y), std::max(p.z, t)));
+}
+
+SphereTracer::MarchEnd SphereTracer::march(const shading::Ray& ray, float t1, float& t, uint32_t& steps,
+                                           SceneDistance& at_hit, shading::PixelCounts* counts) const {
   const SceneHash& hash = sdf_.hash;
-  // Clip to the hash box: outside it there is nothing to hit.
   const glm::vec3 lo = hash.origin, hi = hash.origin + glm::vec3(hash.dims) * hash.cell_size;
-  float t0 = 0.0f, t1 = tmax;
-  for (int axis = 0; axis < 3; ++axis) {
-    const float inv = 1.0f / ray.dir[axis];
-    float a = (lo[axis] - ray.origin[axis]) * inv, b = (hi[axis] - ray.origin[axis]) * inv;
-    if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a);
-    t1 = std::min(t1, b);
-  }
-  if (t0 > t1) return -1.0f;
-  float t = t0;
-  for (uint32_t step = 0; step < params_.max_steps && t <= t1; ++step) {
+  // One epsilon past t1: a step landing a rounding error beyond the box's far face (a wall lying
+  // on it) would otherwise end the march in front of the surface.
+  for (; steps < params_.max_steps; ++steps) {
+    const float epsilon = epsilon_at(ray, t);
+    if (t > t1 + epsilon) return MarchEnd::left;
     // Clamped: the clip's rounding can leave a point a hair outside the box, where a step would
     // be wasted (and wasted differently by the kernels, so the counters would not agree).
     const SceneDistance d = traced_scene_distance(sdf_, scene_, culling_, glm::clamp(ray.origin + t * ray.dir, lo, hi));
@@ -53,40 +59,96 @@ float SphereTracer::march(const shading::Ray& ray, float tmax, SceneDistance& at
       (*counts)[COUNTER_AABB_TESTS] += d.box_tests;
     }
     // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
-    if (d.distance < epsilon_ && d.triangle != std::numeric_limits<uint32_t>::max()) {
+    if (d.distance < epsilon && d.triangle != std::numeric_limits<uint32_t>::max()) {
       at_hit = d;
-      return t;
+      ++steps;
+      return MarchEnd::converged;
     }
     // At least epsilon: where the ray enters the box, rounding can leave the point a hair
     // outside it, and a bound of ~1e-7 would not move t at all (the ray then stalls to a miss).
-    t += std::max(d.distance, epsilon_);
+    t += std::max(d.distance, epsilon);
   }
-  return -1.0f;
+  return t > t1 + epsilon_at(ray, t) ? MarchEnd::left : MarchEnd::out_of_steps;
+}
+
+// --hit thesis: the first converged point. --hit exact: a converged point where the ray crosses
+// no listed triangle passed the surface within epsilon (a silhouette), and the march goes on;
+// only a ray that runs out of steps falls back to its first converged point. The search covers one
+// epsilon on either side of the converged point, as far as a step can go, so converging again
+// near the same instance before that segment's end needs no second test.
+bool SphereTracer::trace(const shading::Ray& ray, float tmax, SurfaceHit& hit, shading::PixelCounts* counts) const {
+  const SceneHash& hash = sdf_.hash;
+  const glm::vec3 lo = hash.origin, hi = hash.origin + glm::vec3(hash.dims) * hash.cell_size;
+  float t = 0.0f, t1 = tmax;  // the ray inside the hash box: outside it there is nothing to hit
+  for (int axis = 0; axis < 3; ++axis) {
+    const float inv = 1.0f / ray.dir[axis];
+    float a = (lo[axis] - ray.origin[axis]) * inv, b = (hi[axis] - ray.origin[axis]) * inv;
+    if (a > b) std::swap(a, b);
+    t = std::max(t, a);
+    t1 = std::min(t1, b);
+  }
+  if (t > t1) return false;
+  const bool exact = params_.hit == HitMode::exact;
+  uint32_t steps = 0;
+  std::optional<SurfaceHit> first;
+  uint32_t cleared_instance = std::numeric_limits<uint32_t>::max();
+  float cleared_until = 0.0f;
+  SceneDistance d{};
+  MarchEnd end;
+  while ((end = march(ray, t1, t, steps, d, counts)) == MarchEnd::converged) {
+    if (exact && (d.instance != cleared_instance || t > cleared_until)) {
+      const Instance& instance = scene_.instances[d.instance];
+      const glm::mat4& to_object = sdf_.world_to_object[d.instance];
+      const glm::vec3 o(to_object * glm::vec4(ray.origin, 1.0f)), dir(glm::mat3(to_object) * ray.dir);
+      Crossing crossing;
+      uint32_t tests = 0;
+      const float epsilon = epsilon_at(ray, t);
+      const bool crossed = exact_crossing(sdf_.mesh_grids[instance.mesh], scene_.meshes[instance.mesh], o, dir,
+                                          t - epsilon, t + epsilon, crossing, tests);
+      if (counts) (*counts)[COUNTER_TRIANGLE_TESTS] += tests;
+      if (crossed) {
+        if (crossing.t >= tmax) return false;
+        hit = SurfaceHit{std::max(crossing.t, 0.0f), d.instance, crossing.triangle, crossing.uv};
+        return true;
+      }
+      cleared_instance = d.instance;
+      cleared_until = t + epsilon;
+    }
+    if (!first) first = SurfaceHit{t, d.instance, d.triangle, glm::vec2(0.0f)};
+    if (!exact) break;
+    t += std::max(d.distance, epsilon_at(ray, t));
+  }
+  if (!first || (exact && end != MarchEnd::out_of_steps)) return false;
+  hit = *first;
+  const Instance& instance = scene_.instances[hit.instance];
+  const Mesh& mesh = scene_.meshes[instance.mesh];
+  const glm::uvec3 tri = mesh.triangles[hit.triangle];
+  const glm::vec3 p_local(sdf_.world_to_object[hit.instance] * glm::vec4(ray.origin + hit.t * ray.dir, 1.0f));
+  const glm::vec3 a = mesh.positions[tri.x], b = mesh.positions[tri.y], c = mesh.positions[tri.z];
+  hit.uv = barycentric(closest_on_triangle(p_local, a, b, c).point, a, b, c);
+  return true;
 }
 
 bool SphereTracer::closest_hit(shading::Ray ray, float tmax, shading::Hit& hit, shading::PixelCounts* counts) const {
-  SceneDistance d{};
-  const float t = march(ray, tmax, d, counts);
-  if (t < 0.0f) return false;
-  const Instance& instance = scene_.instances[d.instance];
+  SurfaceHit surface{};
+  if (!trace(ray, tmax, surface, counts)) return false;
+  const Instance& instance = scene_.instances[surface.instance];
   const Mesh& mesh = scene_.meshes[instance.mesh];
-  const glm::uvec3 tri = mesh.triangles[d.triangle];
-  const glm::vec3 p_local(instance.transform.world_to_object() * glm::vec4(ray.origin + t * ray.dir, 1.0f));
-  const glm::vec3 a = mesh.positions[tri.x], b = mesh.positions[tri.y], c = mesh.positions[tri.z];
-  const glm::vec2 uv = barycentric(closest_on_triangle(p_local, a, b, c).point, a, b, c);
-  const glm::vec3 n = shading::interpolate_barycentric(mesh.normals[tri.x], mesh.normals[tri.y], mesh.normals[tri.z], uv);
-  hit.t = t;
-  hit.instance = d.instance;
-  hit.prim = d.triangle;
+  const glm::uvec3 tri = mesh.triangles[surface.triangle];
+  const glm::vec3 n =
+      shading::interpolate_barycentric(mesh.normals[tri.x], mesh.normals[tri.y], mesh.normals[tri.z], surface.uv);
+  hit.t = surface.t;
+  hit.instance = surface.instance;
+  hit.prim = surface.triangle;
   hit.material = instance.material;
   hit.normal = glm::normalize(glm::mat3(instance.transform.object_to_world()) * n);
-  hit.uv = uv;
+  hit.uv = surface.uv;
   return true;
 }
 
 bool SphereTracer::any_hit(shading::Ray ray, float tmax, shading::PixelCounts* counts) const {
-  SceneDistance d{};
-  return march(ray, tmax, d, counts) >= 0.0f;
+  SurfaceHit surface{};
+  return trace(ray, tmax, surface, counts);
 }
 
 }  // namespace sdfbench::sdf

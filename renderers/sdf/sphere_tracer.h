@@ -10,9 +10,18 @@
 
 namespace sdfbench::sdf {
 
+// Where a converged ray hits: `exact` intersects it with the triangles listed there (exact_hit.h;
+// the default: t, normal and uv where the ray meets the surface, as in Embree); `thesis` takes the
+// converged point and the closest point on the nearest triangle (thesis 5.2).
+enum class HitMode { exact, thesis };
+
 struct SphereTraceParams {
   uint32_t max_steps = 512;
-  float hit_epsilon = 5e-6f;  // hit when the distance drops below this x the scene scale (2e-5 left ~1 % silhouette false hits)
+  HitMode hit = HitMode::exact;
+  // --hit exact: hit when the distance drops below this fraction of the pixel's footprint at t
+  // (never below float precision at the point); --hit thesis uses hit_epsilon instead.
+  float footprint = 0.25f;
+  float hit_epsilon = 5e-6f;  // --hit thesis: hit when the distance drops below this x the scene scale (2e-5 left ~1 % silhouette false hits)
 };
 
 // `counts` (nullable): adds the steps, instance and triangle evaluations and box tests, counted
@@ -22,17 +31,30 @@ class SphereTracer {
   SphereTracer(const Scene& scene, const SceneSdf& sdf, const SphereTraceParams& params);
   bool closest_hit(shading::Ray ray, float tmax, shading::Hit& hit, shading::PixelCounts* counts) const;
   bool any_hit(shading::Ray ray, float tmax, shading::PixelCounts* counts) const;
-  float epsilon() const { return epsilon_; }
+  // The frame's camera: --hit exact's footprint follows its pixel angle (before rendering it).
+  void set_frame(const shading::FrameParams& frame);
 
  private:
-  // March along the ray inside the hash box; returns the hit's t or a negative value.
-  float march(const shading::Ray& ray, float tmax, SceneDistance& at_hit, shading::PixelCounts* counts) const;
+  enum class MarchEnd { converged, left, out_of_steps };
+  struct SurfaceHit {
+    float t;
+    uint32_t instance, triangle;
+    glm::vec2 uv;
+  };
+  // The hit threshold at t (sdf_trace.comp's hit_epsilon).
+  float epsilon_at(const shading::Ray& ray, float t) const;
+  // Sphere tracing from t towards t1 with `steps` of the budget spent (sdf_trace.comp's march).
+  MarchEnd march(const shading::Ray& ray, float t1, float& t, uint32_t& steps, SceneDistance& at_hit,
+                 shading::PixelCounts* counts) const;
+  // The first surface before tmax (sdf_trace.comp's trace_sdf).
+  bool trace(const shading::Ray& ray, float tmax, SurfaceHit& hit, shading::PixelCounts* counts) const;
 
   const Scene& scene_;
   const SceneSdf& sdf_;
   TraceCulling culling_;
   SphereTraceParams params_;
-  float epsilon_;
+  float epsilon_;     // --hit thesis: hit_epsilon x the scene scale
+  float cone_ = 0.0f;  // --hit exact: footprint x the angle of one pixel (set_frame)
 };
 
 }  // namespace sdfbench::sdf

@@ -72,7 +72,9 @@ SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const
   const sdf::SceneHash& hash = sdf.hash;
   out.params.hash_origin = glm::vec4(hash.origin, hash.cell_size);
   out.params.hash_dims = glm::uvec4(hash.dims, tracing.max_steps);
-  out.params.tracing = glm::vec4(tracing.hit_epsilon * scene_scale(scene), 0.0f, 0.0f, 0.0f);
+  out.params.tracing =
+      glm::vec4(tracing.hit_epsilon * scene_scale(scene), tracing.hit == sdf::HitMode::exact ? 1.0f : 0.0f,
+                tracing.footprint, 0.0f);
   flatten_hash(hash, out);
   const sdf::TraceCulling culling = sdf::make_trace_culling(scene, sdf);
 

@@ -9,7 +9,8 @@
 struct SdfParams {
   vec4 hash_origin;  // xyz: min corner of the hash box, w: hash cell size
   uvec4 hash_dims;   // xyz: cells per axis, w: max sphere-tracing steps
-  vec4 tracing;      // x: hit epsilon in world units (hit_epsilon x scene scale)
+  vec4 tracing;      // x: hit epsilon in world units (hit_epsilon x scene scale), y: 1 for --hit exact,
+                     // z: --hit-footprint (exact: the hit threshold as a fraction of a pixel's footprint)
 };
 
 // A node word, the same in the hash-cell table (each cell's octree root) and the octree-node
@@ -34,5 +35,9 @@ struct SdfParams {
 #define SDF_MESH_TEXELS 4
 
 #define SDF_NONE 0xffffffffu
+
+// --hit exact: the most mesh-grid cells one crossing search walks (a bound on the loop; a
+// segment of two hit epsilons crosses a few).
+#define SDF_EXACT_MAX_CELLS 64u
 
 #endif

@@ -9,13 +9,14 @@
 
 #include "frame_bindings.glsl"
 #include "sdf_scene_distance.glsl"
+#include "ray_triangle.glsl"
 
-// March inside the hash box (outside it there is nothing to hit) up to tmax; returns the hit's
-// t, or -1 after max steps or past the box.
-float march(Ray ray, float tmax, out SceneDistance at_hit) {
+// The ray's segment inside the hash box (outside it there is nothing to hit), up to tmax.
+bool clip_to_hash_box(Ray ray, float tmax, out float t0, out float t1) {
   vec3 lo = sdf.hash_origin.xyz;
   vec3 hi = lo + vec3(sdf.hash_dims.xyz) * sdf.hash_origin.w;
-  float t0 = 0.0f, t1 = tmax;
+  t0 = 0.0f;
+  t1 = tmax;
   for (int axis = 0; axis < 3; ++axis) {
     float inv = 1.0f / ray.dir[axis];
     float a = (lo[axis] - ray.origin[axis]) * inv, b = (hi[axis] - ray.origin[axis]) * inv;
@@ -27,37 +28,177 @@ float march(Ray ray, float tmax, out SceneDistance at_hit) {
     t0 = t0 < a ? a : t0;  // std::max / std::min: a NaN slab (ray in the plane) changes nothing
     t1 = b < t1 ? b : t1;
   }
-  if (t0 > t1) return -1.0f;
-  float t = t0;
-  for (uint step = 0u; step < sdf.hash_dims.w && t <= t1; ++step) {
+  return t0 <= t1;
+}
+
+// Per ray (trace_sdf): --hit exact's footprint fraction x the angle of one pixel.
+float sdf_cone;
+
+// The hit threshold at t. --hit thesis: hit_epsilon x the scene scale. --hit exact: a fraction of
+// the pixel's footprint at t (a cone of the pixel's angle, as in cone tracing), so that it
+// follows the ray, not the scene, never below float precision at the point. As sdf-cpu.
+float hit_epsilon(Ray ray, float t) {
+  if (sdf.tracing.y < 0.5f) return sdf.tracing.x;
+  vec3 p = abs(ray.origin + t * ray.dir);
+  return max(sdf_cone * t, 1e-6f * max(max(p.x, p.y), max(p.z, t)));
+}
+
+const uint MARCH_CONVERGED = 0u;  // closer than epsilon to a listed triangle at t
+const uint MARCH_LEFT = 1u;       // past t1: nothing there
+const uint MARCH_OUT_OF_STEPS = 2u;
+
+// Sphere tracing from t towards t1, `steps` of the ray's budget already spent. The end test
+// allows one epsilon past t1: a step that lands a rounding error beyond the box's far face
+// (a wall lying on it) would otherwise end the march in front of the surface.
+uint march(Ray ray, float t1, inout float t, inout uint steps, out SceneDistance at_hit) {
+  vec3 lo = sdf.hash_origin.xyz;
+  vec3 hi = lo + vec3(sdf.hash_dims.xyz) * sdf.hash_origin.w;
+  for (; steps < sdf.hash_dims.w; ++steps) {
+    float epsilon = hit_epsilon(ray, t);
+    if (t > t1 + epsilon) return MARCH_LEFT;
     COUNT(COUNTER_STEPS, 1u);
     // Clamped: the clip's rounding can leave a point a hair outside the box, where a step would
     // be wasted (and wasted differently by sdf-cpu, so the counters would not agree).
     SceneDistance d = scene_distance(clamp(ray.origin + t * ray.dir, lo, hi));
     // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
-    if (d.distance < sdf.tracing.x && d.triangle != SDF_NONE) {
+    if (d.distance < epsilon && d.triangle != SDF_NONE) {
       at_hit = d;
-      return t;
+      ++steps;
+      return MARCH_CONVERGED;
     }
     // At least epsilon: where the ray enters the box, rounding can leave the point a hair
     // outside it, and a bound of ~1e-7 would not move t at all (the ray then stalls to a miss).
-    t += max(d.distance, sdf.tracing.x);
+    t += max(d.distance, epsilon);
   }
-  return -1.0f;
+  return t > t1 + hit_epsilon(ray, t) ? MARCH_LEFT : MARCH_OUT_OF_STEPS;
 }
 
-// The surface normal and uv come from the closest triangle (stored, as in the thesis), not
-// from the field's gradient.
-bool closest_hit(Ray ray, float tmax, out Hit hit) {
+vec3 transform_direction(int row0, vec3 v) {
+  return vec3(dot(uintBitsToFloat(texelFetch(instance_records, row0).xyz), v),
+              dot(uintBitsToFloat(texelFetch(instance_records, row0 + 1).xyz), v),
+              dot(uintBitsToFloat(texelFetch(instance_records, row0 + 2).xyz), v));
+}
+
+// --hit exact: the earliest crossing of the ray with a triangle of `instance` for t in
+// [t_lo, t_hi], walking the mesh-grid cells that segment crosses and testing the triangles each
+// lists: every crossing inside a cell is found there, since the cell lists each triangle that is
+// the nearest one to a point of the cell (a point on a triangle is nearest to it). False when
+// there is none: the ray passed that surface within epsilon (a silhouette). As
+// exact_crossing() in renderers/sdf/exact_hit.cpp.
+bool exact_crossing(Ray ray, float t_lo, float t_hi, uint instance, out float t_hit, out uint triangle, out vec2 uv) {
+  int record = int(instance) * SDF_INSTANCE_TEXELS;
+  vec3 o = transform_point(record + 2, ray.origin);
+  vec3 d = transform_direction(record + 2, ray.dir);  // t is the same parameter in both frames
+  int base = int(texelFetch(instance_records, record).w) * SDF_MESH_TEXELS;
+  uvec4 r0 = texelFetch(mesh_records, base);
+  uvec4 r1 = texelFetch(mesh_records, base + 1);
+  vec3 origin = uintBitsToFloat(r0.xyz);
+  float cell_size = uintBitsToFloat(r0.w);
+  uvec3 dims = r1.xyz;
+  t_hit = t_hi;
+  triangle = SDF_NONE;
+  // The segment inside the grid box (outside it the mesh has no triangle).
+  vec3 grid_hi = origin + vec3(dims) * cell_size;
+  float t_cell = t_lo, t_end = t_hi;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (d[axis] == 0.0f) continue;
+    float a = (origin[axis] - o[axis]) / d[axis], b = (grid_hi[axis] - o[axis]) / d[axis];
+    t_cell = max(t_cell, min(a, b));
+    t_end = min(t_end, max(a, b));
+  }
+  for (uint visited = 0u; visited < SDF_EXACT_MAX_CELLS && t_cell <= t_end; ++visited) {
+    // Clamped: at the box's faces rounding can put the point a hair outside.
+    uvec3 c = uvec3(clamp(floor((o + t_cell * d - origin) / cell_size), vec3(0.0f), vec3(dims - 1u)));
+    vec3 cell_lo = origin + vec3(c) * cell_size;
+    float t_exit = 3.0e38f;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (d[axis] == 0.0f) continue;
+      float a = (cell_lo[axis] - o[axis]) / d[axis], b = (cell_lo[axis] + cell_size - o[axis]) / d[axis];
+      t_exit = min(t_exit, max(a, b));
+    }
+    t_exit += 1e-5f * abs(t_exit);  // rounding of the cell walls
+    uvec2 range = texelFetch(grid_cells, int(r1.w + c.x + dims.x * (c.y + dims.y * c.z))).xy;
+    for (uint i = range.x; i < range.y; ++i) {
+      uint k = texelFetch(grid_triangles, int(i)).x;
+      float tk;
+      vec2 uvk;
+      COUNT(COUNTER_TRIANGLE_TESTS, 1u);
+      if (!ray_triangle(o, d, fetch_triangle_vertex(k, 0), fetch_triangle_vertex(k, 1), fetch_triangle_vertex(k, 2), tk,
+                        uvk))
+        continue;
+      // Ties go to the lower triangle index, as in sdf-cpu.
+      if (tk >= t_lo && tk <= min(t_exit, t_hi) && (tk < t_hit || (tk == t_hit && k < triangle))) {
+        t_hit = tk;
+        triangle = k;
+        uv = uvk;
+      }
+    }
+    if (triangle != SDF_NONE || t_exit >= t_end) break;
+    t_cell = max(t_exit, t_cell + 1e-6f * abs(t_cell));
+  }
+  return triangle != SDF_NONE;
+}
+
+// The first surface along the ray before tmax. --hit thesis: the first converged point, its
+// normal and uv from the closest point on the nearest triangle (as in the thesis). --hit exact:
+// a converged point where the ray crosses no listed triangle passed the surface within epsilon
+// (a silhouette), and the march goes on; only a ray that runs out of steps falls back to its
+// first converged point. The search covers one epsilon on either side of the converged point, as
+// far as a step can go, so converging again near the same instance before that segment's end
+// needs no second test.
+bool trace_sdf(Ray ray, float tmax, out float t, out uint instance, out uint triangle, out vec2 uv) {
+  float t1;
+  if (!clip_to_hash_box(ray, tmax, t, t1)) return false;
+  uint steps = 0u;
+  bool exact = sdf.tracing.y > 0.5f;
+  sdf_cone = sdf.tracing.z * 2.0f * length(vec3(frame.camera_up)) / float(frame.image.y);
+  bool converged_before = false;
+  float first_t = 0.0f;
+  SceneDistance first;
+  uint cleared_instance = SDF_NONE;
+  float cleared_until = 0.0f;
   SceneDistance d;
-  float t = march(ray, tmax, d);
-  if (t < 0.0f) return false;
-  int record = int(d.instance) * SDF_INSTANCE_TEXELS;
+  uint end;
+  while ((end = march(ray, t1, t, steps, d)) == MARCH_CONVERGED) {
+    if (exact && (d.instance != cleared_instance || t > cleared_until)) {
+      float t_hit, epsilon = hit_epsilon(ray, t);
+      if (exact_crossing(ray, t - epsilon, t + epsilon, d.instance, t_hit, triangle, uv)) {
+        if (t_hit >= tmax) return false;
+        t = max(t_hit, 0.0f);
+        instance = d.instance;
+        return true;
+      }
+      cleared_instance = d.instance;
+      cleared_until = t + epsilon;
+    }
+    if (!converged_before) {
+      converged_before = true;
+      first_t = t;
+      first = d;
+    }
+    if (!exact) break;
+    t += max(d.distance, hit_epsilon(ray, t));
+  }
+  if (!converged_before || (exact && end != MARCH_OUT_OF_STEPS)) return false;
+  t = first_t;
+  instance = first.instance;
+  triangle = first.triangle;
+  int record = int(instance) * SDF_INSTANCE_TEXELS;
   vec3 p = transform_point(record + 2, ray.origin + t * ray.dir);
-  vec3 a = fetch_triangle_vertex(d.triangle, 0), b = fetch_triangle_vertex(d.triangle, 1),
-       c = fetch_triangle_vertex(d.triangle, 2);
-  vec2 uv = barycentric(closest_on_triangle(p, a, b, c), a, b, c);
-  int n = int(3u * d.triangle);
+  vec3 a = fetch_triangle_vertex(triangle, 0), b = fetch_triangle_vertex(triangle, 1),
+       c = fetch_triangle_vertex(triangle, 2);
+  uv = barycentric(closest_on_triangle(p, a, b, c), a, b, c);
+  return true;
+}
+
+// The surface normal and uv are interpolated from the triangle's vertices at uv.
+bool closest_hit(Ray ray, float tmax, out Hit hit) {
+  float t;
+  uint instance, triangle;
+  vec2 uv;
+  if (!trace_sdf(ray, tmax, t, instance, triangle, uv)) return false;
+  int record = int(instance) * SDF_INSTANCE_TEXELS;
+  int n = int(3u * triangle);
   vec3 normal = interpolate_barycentric(texelFetch(tri_normals, n).xyz, texelFetch(tri_normals, n + 1).xyz,
                                         texelFetch(tri_normals, n + 2).xyz, uv);
   uvec4 o0 = texelFetch(instance_records, record + 5);
@@ -66,18 +207,20 @@ bool closest_hit(Ray ray, float tmax, out Hit hit) {
   uint mesh = texelFetch(instance_records, record).w;
   uint first_triangle = texelFetch(mesh_records, int(mesh) * SDF_MESH_TEXELS + 2).w;
   hit.t = t;
-  hit.instance = d.instance;
-  hit.prim = d.triangle - first_triangle;
+  hit.instance = instance;
+  hit.prim = triangle - first_triangle;
   hit.material = o0.w;
   hit.normal = normalize(vec3(dot(uintBitsToFloat(o0.xyz), normal), dot(o1, normal), dot(o2, normal)));
   hit.uv = uv;
   return true;
 }
 
-// Shadow rays: the first hit is enough.
+// Shadow rays: the first surface is enough (in exact mode the first crossing, as for closest_hit).
 bool any_hit(Ray ray, float tmax) {
-  SceneDistance d;
-  return march(ray, tmax, d) >= 0.0f;
+  float t;
+  uint instance, triangle;
+  vec2 uv;
+  return trace_sdf(ray, tmax, t, instance, triangle, uv);
 }
 
 #include "render_main.glsl"

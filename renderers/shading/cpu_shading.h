@@ -44,7 +44,7 @@ class CpuShading {
  public:
 #include "shading.glsl"
 
-  // All of a pixel's rays at once (the Vulkan kernel spreads whitted rays over passes); their
+  // All of a pixel's rays at once (as the Vulkan kernel, but on a driver with a loop cap); their
   // work is added to `counts` unless it is null.
   vec4 shade_pixel(uvec2 pixel, PixelAov& aov, PixelCounts* counts) {
     counts_ = counts;

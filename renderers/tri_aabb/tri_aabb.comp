@@ -7,6 +7,7 @@
 
 #include "frame_bindings.glsl"
 #include "tri_aabb_types.glsl"
+#include "ray_triangle.glsl"
 
 layout(std430, binding = 8) readonly buffer InstanceBlock { TriInstance instances[]; };
 // Triangle data in texel buffers: lavapipe serves divergent texel fetches far faster than
@@ -31,25 +32,12 @@ bool hits_box(vec3 origin, vec3 inv_dir, vec3 box_min, vec3 box_max, float tmax)
   return enter <= leave;
 }
 
-// Möller & Trumbore 1997, two-sided; t in (0, tmax).
+// t in (0, tmax).
 bool hits_triangle(vec3 o, vec3 d, int base, float tmax, out float t, out vec2 uv) {
   COUNT(COUNTER_TRIANGLE_TESTS, 1u);
-  vec3 v0 = texelFetch(tri_vertices, base).xyz;
-  vec3 e1 = texelFetch(tri_vertices, base + 1).xyz - v0;
-  vec3 e2 = texelFetch(tri_vertices, base + 2).xyz - v0;
-  vec3 p = cross(d, e2);
-  float det = dot(e1, p);
-  if (det == 0.0f) return false;
-  float inv_det = 1.0f / det;
-  vec3 s = o - v0;
-  float u = dot(s, p) * inv_det;
-  if (u < 0.0f || u > 1.0f) return false;
-  vec3 q = cross(s, e1);
-  float v = dot(d, q) * inv_det;
-  if (v < 0.0f || u + v > 1.0f) return false;
-  t = dot(e2, q) * inv_det;
-  uv = vec2(u, v);
-  return t > 0.0f && t < tmax;
+  return ray_triangle(o, d, texelFetch(tri_vertices, base).xyz, texelFetch(tri_vertices, base + 1).xyz,
+                      texelFetch(tri_vertices, base + 2).xyz, t, uv) &&
+         t > 0.0f && t < tmax;
 }
 
 bool closest_hit(Ray ray, float tmax, out Hit hit) {

@@ -1,0 +1,58 @@
+#include "renderers/sdf/exact_hit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sdfbench::sdf {
+
+bool exact_crossing(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& o, const glm::vec3& d, float t_lo,
+                    float t_hi, Crossing& crossing, uint32_t& tests) {
+  constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+  crossing.t = t_hi;
+  uint32_t found = kNone;
+  // The segment inside the grid box (outside it the mesh has no triangle).
+  const glm::vec3 grid_hi = grid.box_max();
+  float t_cell = t_lo, t_end = t_hi;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (d[axis] == 0.0f) continue;
+    const float a = (grid.origin[axis] - o[axis]) / d[axis], b = (grid_hi[axis] - o[axis]) / d[axis];
+    t_cell = std::max(t_cell, std::min(a, b));
+    t_end = std::min(t_end, std::max(a, b));
+  }
+  for (uint32_t visited = 0; visited < kExactMaxCells && t_cell <= t_end; ++visited) {
+    // Clamped: at the box's faces rounding can put the point a hair outside.
+    const glm::uvec3 c(glm::clamp(glm::floor((o + t_cell * d - grid.origin) / grid.cell_size), glm::vec3(0.0f),
+                                  glm::vec3(grid.dims - 1u)));
+    const glm::vec3 cell_lo = grid.origin + glm::vec3(c) * grid.cell_size;
+    float t_exit = 3.0e38f;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (d[axis] == 0.0f) continue;
+      const float a = (cell_lo[axis] - o[axis]) / d[axis], b = (cell_lo[axis] + grid.cell_size - o[axis]) / d[axis];
+      t_exit = std::min(t_exit, std::max(a, b));
+    }
+    t_exit += 1e-5f * std::abs(t_exit);  // rounding of the cell walls
+    const size_t cell = c.x + static_cast<size_t>(grid.dims.x) * (c.y + static_cast<size_t>(grid.dims.y) * c.z);
+    for (uint32_t i = grid.cell_begin[cell]; i < grid.cell_begin[cell + 1]; ++i) {
+      const uint32_t k = grid.cell_triangles[i];
+      const glm::uvec3 tri = mesh.triangles[k];
+      float tk = 0.0f;
+      glm::vec2 uv(0.0f);
+      ++tests;
+      if (!shading::ray_triangle(o, d, mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z], tk, uv))
+        continue;
+      // Ties go to the lower triangle index (the kernels walk the list in another order).
+      if (tk >= t_lo && tk <= std::min(t_exit, t_hi) && (tk < crossing.t || (tk == crossing.t && k < found))) {
+        crossing.t = tk;
+        crossing.uv = uv;
+        found = k;
+      }
+    }
+    if (found != kNone || t_exit >= t_end) break;
+    t_cell = std::max(t_exit, t_cell + 1e-6f * std::abs(t_cell));
+  }
+  crossing.triangle = found;
+  return found != kNone;
+}
+
+}  // namespace sdfbench::sdf
