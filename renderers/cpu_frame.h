@@ -16,10 +16,10 @@
 
 namespace sdfbench {
 
+// `inputs`: make_shading_inputs(scene, request), which a tracer may need too (sdf-cpu's footprint).
 template <class Tracer>
-FrameResult render_cpu_frame(const Tracer& tracer, const Scene& scene, const FrameRequest& request, unsigned threads,
-                             uint32_t counter_kinds) {
-  const ShadingInputs inputs = make_shading_inputs(scene, request);
+FrameResult render_cpu_frame(const Tracer& tracer, const Scene& scene, const ShadingInputs& inputs,
+                             const FrameRequest& request, unsigned threads, uint32_t counter_kinds) {
   const size_t pixels = static_cast<size_t>(request.width) * request.height;
   FrameResult result;
   FrameImages& img = result.images;

@@ -118,7 +118,7 @@ bool EmbreeRenderer::any_hit(shading::Ray ray, float tmax, shading::PixelCounts*
 
 FrameResult EmbreeRenderer::render(const FrameRequest& request) {
   if (!scene_) throw Error("internal: render before prepare");
-  return render_cpu_frame(*this, *scene_, request, threads_, 0u);
+  return render_cpu_frame(*this, *scene_, make_shading_inputs(*scene_, request), request, threads_, 0u);
 }
 
 }  // namespace sdfbench

@@ -12,25 +12,15 @@ bool exact_crossing(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::v
   crossing.t = t_hi;
   uint32_t found = kNone;
   // The segment inside the grid box (outside it the mesh has no triangle).
-  const glm::vec3 grid_hi = grid.box_max();
   float t_cell = t_lo, t_end = t_hi;
-  for (int axis = 0; axis < 3; ++axis) {
-    if (d[axis] == 0.0f) continue;
-    const float a = (grid.origin[axis] - o[axis]) / d[axis], b = (grid_hi[axis] - o[axis]) / d[axis];
-    t_cell = std::max(t_cell, std::min(a, b));
-    t_end = std::min(t_end, std::max(a, b));
-  }
+  shading::clip_to_box(o, d, grid.origin, grid.box_max(), t_cell, t_end);
   for (uint32_t visited = 0; visited < kExactMaxCells && t_cell <= t_end; ++visited) {
     // Clamped: at the box's faces rounding can put the point a hair outside.
     const glm::uvec3 c(glm::clamp(glm::floor((o + t_cell * d - grid.origin) / grid.cell_size), glm::vec3(0.0f),
                                   glm::vec3(grid.dims - 1u)));
     const glm::vec3 cell_lo = grid.origin + glm::vec3(c) * grid.cell_size;
-    float t_exit = 3.0e38f;
-    for (int axis = 0; axis < 3; ++axis) {
-      if (d[axis] == 0.0f) continue;
-      const float a = (cell_lo[axis] - o[axis]) / d[axis], b = (cell_lo[axis] + grid.cell_size - o[axis]) / d[axis];
-      t_exit = std::min(t_exit, std::max(a, b));
-    }
+    float t_enter = -3.0e38f, t_exit = 3.0e38f;
+    shading::clip_to_box(o, d, cell_lo, cell_lo + grid.cell_size, t_enter, t_exit);
     t_exit += 1e-5f * std::abs(t_exit);  // rounding of the cell walls
     const size_t cell = c.x + static_cast<size_t>(grid.dims.x) * (c.y + static_cast<size_t>(grid.dims.y) * c.z);
     for (uint32_t i = grid.cell_begin[cell]; i < grid.cell_begin[cell + 1]; ++i) {

@@ -30,8 +30,9 @@ std::optional<StructureStats> SdfCpuRenderer::structure_stats() const {
 
 FrameResult SdfCpuRenderer::render(const FrameRequest& request) {
   if (!tracer_) throw Error("internal: render before prepare");
-  tracer_->set_frame(make_shading_inputs(*scene_, request).frame);
-  return render_cpu_frame(*tracer_, *scene_, request, threads_, kSdfCounters);
+  const ShadingInputs inputs = make_shading_inputs(*scene_, request);
+  tracer_->set_frame(inputs.frame);
+  return render_cpu_frame(*tracer_, *scene_, inputs, request, threads_, kSdfCounters);
 }
 
 }  // namespace sdfbench

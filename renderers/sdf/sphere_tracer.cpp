@@ -96,13 +96,13 @@ bool SphereTracer::trace(const shading::Ray& ray, float tmax, SurfaceHit& hit, s
   SceneDistance d{};
   MarchEnd end;
   while ((end = march(ray, t1, t, steps, d, counts)) == MarchEnd::converged) {
+    const float epsilon = epsilon_at(ray, t);
     if (exact && (d.instance != cleared_instance || t > cleared_until)) {
       const Instance& instance = scene_.instances[d.instance];
       const glm::mat4& to_object = sdf_.world_to_object[d.instance];
       const glm::vec3 o(to_object * glm::vec4(ray.origin, 1.0f)), dir(glm::mat3(to_object) * ray.dir);
       Crossing crossing;
       uint32_t tests = 0;
-      const float epsilon = epsilon_at(ray, t);
       const bool crossed = exact_crossing(sdf_.mesh_grids[instance.mesh], scene_.meshes[instance.mesh], o, dir,
                                           t - epsilon, t + epsilon, crossing, tests);
       if (counts) (*counts)[COUNTER_TRIANGLE_TESTS] += tests;
@@ -116,7 +116,7 @@ bool SphereTracer::trace(const shading::Ray& ray, float tmax, SurfaceHit& hit, s
     }
     if (!first) first = SurfaceHit{t, d.instance, d.triangle, glm::vec2(0.0f)};
     if (!exact) break;
-    t += std::max(d.distance, epsilon_at(ray, t));
+    t += epsilon;  // the converged distance is below it
   }
   if (!first || (exact && end != MarchEnd::out_of_steps)) return false;
   hit = *first;

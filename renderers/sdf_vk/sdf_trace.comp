@@ -9,6 +9,7 @@
 
 #include "frame_bindings.glsl"
 #include "sdf_scene_distance.glsl"
+#include "ray_box.glsl"
 #include "ray_triangle.glsl"
 
 // The ray's segment inside the hash box (outside it there is nothing to hit), up to tmax.
@@ -98,24 +99,14 @@ bool exact_crossing(Ray ray, float t_lo, float t_hi, uint instance, out float t_
   t_hit = t_hi;
   triangle = SDF_NONE;
   // The segment inside the grid box (outside it the mesh has no triangle).
-  vec3 grid_hi = origin + vec3(dims) * cell_size;
   float t_cell = t_lo, t_end = t_hi;
-  for (int axis = 0; axis < 3; ++axis) {
-    if (d[axis] == 0.0f) continue;
-    float a = (origin[axis] - o[axis]) / d[axis], b = (grid_hi[axis] - o[axis]) / d[axis];
-    t_cell = max(t_cell, min(a, b));
-    t_end = min(t_end, max(a, b));
-  }
+  clip_to_box(o, d, origin, origin + vec3(dims) * cell_size, t_cell, t_end);
   for (uint visited = 0u; visited < SDF_EXACT_MAX_CELLS && t_cell <= t_end; ++visited) {
     // Clamped: at the box's faces rounding can put the point a hair outside.
     uvec3 c = uvec3(clamp(floor((o + t_cell * d - origin) / cell_size), vec3(0.0f), vec3(dims - 1u)));
     vec3 cell_lo = origin + vec3(c) * cell_size;
-    float t_exit = 3.0e38f;
-    for (int axis = 0; axis < 3; ++axis) {
-      if (d[axis] == 0.0f) continue;
-      float a = (cell_lo[axis] - o[axis]) / d[axis], b = (cell_lo[axis] + cell_size - o[axis]) / d[axis];
-      t_exit = min(t_exit, max(a, b));
-    }
+    float t_enter = -3.0e38f, t_exit = 3.0e38f;
+    clip_to_box(o, d, cell_lo, cell_lo + cell_size, t_enter, t_exit);
     t_exit += 1e-5f * abs(t_exit);  // rounding of the cell walls
     uvec2 range = texelFetch(grid_cells, int(r1.w + c.x + dims.x * (c.y + dims.y * c.z))).xy;
     for (uint i = range.x; i < range.y; ++i) {
@@ -160,8 +151,9 @@ bool trace_sdf(Ray ray, float tmax, out float t, out uint instance, out uint tri
   SceneDistance d;
   uint end;
   while ((end = march(ray, t1, t, steps, d)) == MARCH_CONVERGED) {
+    float epsilon = hit_epsilon(ray, t);
     if (exact && (d.instance != cleared_instance || t > cleared_until)) {
-      float t_hit, epsilon = hit_epsilon(ray, t);
+      float t_hit;
       if (exact_crossing(ray, t - epsilon, t + epsilon, d.instance, t_hit, triangle, uv)) {
         if (t_hit >= tmax) return false;
         t = max(t_hit, 0.0f);
@@ -177,7 +169,7 @@ bool trace_sdf(Ray ray, float tmax, out float t, out uint instance, out uint tri
       first = d;
     }
     if (!exact) break;
-    t += max(d.distance, hit_epsilon(ray, t));
+    t += epsilon;  // the converged distance is below it
   }
   if (!converged_before || (exact && end != MARCH_OUT_OF_STEPS)) return false;
   t = first_t;

@@ -1,7 +1,7 @@
 #pragma once
 // shading_types.glsl seen from C++: buffer layouts, Ray, Hit and the shared constants; and the
-// implicit primitives' distance and uv functions (implicit_sdf.glsl), and the ray-triangle test
-// (ray_triangle.glsl).
+// implicit primitives' distance and uv functions (implicit_sdf.glsl), and the ray-box and
+// ray-triangle tests (ray_box.glsl, ray_triangle.glsl).
 #include <array>
 #include <cstdint>
 
@@ -11,6 +11,7 @@ namespace sdfbench::shading {
 using namespace glm;
 #include "shading_types.glsl"
 #include "implicit_sdf.glsl"
+#include "ray_box.glsl"
 #include "ray_triangle.glsl"
 }  // namespace sdfbench::shading
 
