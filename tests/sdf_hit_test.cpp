@@ -10,6 +10,7 @@
 
 #include "harness/image_agreement.h"
 #include "renderers/renderer.h"
+#include "renderers/shading/gpu_types.h"
 #include "scenes/thesis_layout.h"
 
 namespace sdfbench {
@@ -83,6 +84,11 @@ void add_instance(Scene& scene, uint32_t mesh, glm::vec3 at, float scale, uint32
 void expect_agreement(const Scene& scene, const BackendOptions& options = {}, uint32_t width = 96, uint32_t height = 54) {
   auto embree = create_renderer("embree", BackendOptions{});
   embree->prepare(scene);
+  // The view shows the scene's meshes, not only sky or floor: agreement on an empty image proves nothing.
+  const FrameImages reference = embree->render(FrameRequest{width, height, RenderMode::Primary, true}).images;
+  size_t instance_pixels = 0;
+  for (uint32_t id : reference.instance_id) instance_pixels += id < shading::FLOOR_INSTANCE_VALUE;
+  EXPECT_GE(instance_pixels, reference.instance_id.size() / 20) << scene.name;
   for (const char* backend : kSdfBackends) {
     auto renderer = create_renderer(backend, options);
     renderer->prepare(scene);
