@@ -129,6 +129,7 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   m.triangle_evals_per_ray = per_ray(COUNTER_TRIANGLE_EVALS);
   m.aabb_tests_per_ray = per_ray(COUNTER_AABB_TESTS);
   m.triangle_tests_per_ray = per_ray(COUNTER_TRIANGLE_TESTS);
+  m.out_of_steps_per_ray = per_ray(COUNTER_OUT_OF_STEPS);
   if (config.backend == settings_.reference) {
     m.agreement = "reference";
   } else {

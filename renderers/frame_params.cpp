@@ -31,10 +31,9 @@ ShadingInputs make_shading_inputs(const Scene& scene, const FrameRequest& reques
   f.sky_zenith = vec4(scene.sky.zenith, 0.0f);
   f.sky_horizon = vec4(scene.sky.horizon, 0.0f);
   f.floor = vec4(scene.floor.height, static_cast<float>(scene.floor.material), scene.floor.enabled ? 1.0f : 0.0f, 0.0f);
-  // Offsets secondary rays off the surface; relative to the scene so it works at any unit.
-  // Implicit objects' hit epsilon (w): far below the offset, so that a ray leaving a surface
-  // starts well outside it; the SDF backends' default hit epsilon, 5e-6 x the scene scale.
-  f.tracing = vec4(1e-4f * scale, scene.ambient, 100.0f * scale, 5e-6f * scale);
+  // Implicit objects' hit epsilon (w): the SDF backends' thesis hit epsilon, 5e-6 x the scene
+  // scale. Rays leave surfaces by offset_origin() in shading.glsl, which follows the hit.
+  f.tracing = vec4(0.0f, scene.ambient, 100.0f * scale, 5e-6f * scale);
   f.image = glm::uvec4(request.width, request.height, static_cast<uint32_t>(request.mode),
                        static_cast<uint32_t>(scene.lights.size()));
   ImplicitTables implicits = make_implicit_tables(scene);

@@ -71,7 +71,7 @@ TEST(MeasurementColumns, MatchTheDocumentedListAndFieldCount) {
   for (const char* required : {"scene", "mesh", "triangles", "objects", "backend", "mode", "width", "height", "hash_cell",
                                "octree_depth", "octree_min_objects", "mesh_cell", "hit", "frames", "ms_median", "ms_min", "ms_max",
                                "fps", "mrays_per_s", "steps_per_ray", "instance_evals_per_ray", "triangle_evals_per_ray",
-                               "aabb_tests_per_ray", "triangle_tests_per_ray",
+                               "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray",
                                "build_ms", "structure_bytes", "hit_agreement", "id_agreement", "psnr", "budget_cut",
                                "device", "driver", "cpu", "threads", "commit"})
     EXPECT_NE(std::find(c.begin(), c.end(), required), c.end()) << required;

@@ -113,6 +113,7 @@ ImplicitNode op(ImplicitKind kind) { return {.kind = kind}; }
 struct NoMeshes {
   bool closest_hit(shading::Ray, float, shading::Hit&) const { return false; }
   bool any_hit(shading::Ray, float) const { return false; }
+  float mesh_hit_tolerance() const { return 0.0f; }
 };
 
 class CsgTree {

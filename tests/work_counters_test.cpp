@@ -46,7 +46,9 @@ TEST(WorkCounters, SdfCpuAndSdfOctreeCountTheSameWork) {
       ASSERT_TRUE(frame.counters[k].has_value());  // triangle_tests: the exact hit's ray-triangle tests
       if (!frame.counters[k]) continue;
       ASSERT_TRUE(expected.counters[k]);
-      EXPECT_GT(*frame.counters[k], 0u);
+      if (k != COUNTER_OUT_OF_STEPS) {  // a clean scene's rays may run out of none
+        EXPECT_GT(*frame.counters[k], 0u);
+      }
       EXPECT_NEAR(per_ray(frame, k), per_ray(expected, k), 0.01 * per_ray(expected, k));
     }
     // Plausible: every instance evaluation follows a box test, and a step evaluates at most the

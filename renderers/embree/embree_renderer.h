@@ -26,6 +26,7 @@ class EmbreeRenderer : public Renderer {
   // counts: instrumented frames leave `counts` alone and report no counters.
   bool closest_hit(shading::Ray ray, float tmax, shading::Hit& hit, shading::PixelCounts* counts) const;
   bool any_hit(shading::Ray ray, float tmax, shading::PixelCounts* counts) const;
+  float mesh_hit_tolerance() const { return 0.0f; }  // ray-triangle hits lie on the triangle
 
  private:
   void check_device(const char* what) const;

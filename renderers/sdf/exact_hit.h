@@ -23,7 +23,7 @@ struct Crossing {
 // lists: every crossing inside a cell is found there, since the cell lists each triangle that is
 // the nearest one to a point of the cell. False when there is none. Adds the ray-triangle tests
 // to `tests`. At most kExactMaxCells cells (SDF_EXACT_MAX_CELLS in the kernels).
-constexpr uint32_t kExactMaxCells = 64;
+constexpr uint32_t kExactMaxCells = 512;
 bool exact_crossing(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& o, const glm::vec3& d, float t_lo,
                     float t_hi, Crossing& crossing, uint32_t& tests);
 

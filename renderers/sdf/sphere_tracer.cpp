@@ -41,7 +41,7 @@ float SphereTracer::epsilon_at(const shading::Ray& ray, float t) const {
 }
 
 SphereTracer::MarchEnd SphereTracer::march(const shading::Ray& ray, float t1, float& t, uint32_t& steps,
-                                           SceneDistance& at_hit, shading::PixelCounts* counts) const {
+                                           SceneDistance& last, float& t_last, shading::PixelCounts* counts) const {
   const SceneHash& hash = sdf_.hash;
   const glm::vec3 lo = hash.origin, hi = hash.origin + glm::vec3(hash.dims) * hash.cell_size;
   // One epsilon past t1: a step landing a rounding error beyond the box's far face (a wall lying
@@ -59,8 +59,9 @@ SphereTracer::MarchEnd SphereTracer::march(const shading::Ray& ray, float t1, fl
       (*counts)[COUNTER_AABB_TESTS] += d.box_tests;
     }
     // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
+    last = d;
+    t_last = t;
     if (d.distance < epsilon && d.triangle != std::numeric_limits<uint32_t>::max()) {
-      at_hit = d;
       ++steps;
       return MarchEnd::converged;
     }
@@ -71,9 +72,22 @@ SphereTracer::MarchEnd SphereTracer::march(const shading::Ray& ray, float t1, fl
   return t > t1 + epsilon_at(ray, t) ? MarchEnd::left : MarchEnd::out_of_steps;
 }
 
+bool SphereTracer::instance_crossing(const shading::Ray& ray, uint32_t instance_id, float t_lo, float t_hi,
+                                     Crossing& crossing, shading::PixelCounts* counts) const {
+  const Instance& instance = scene_.instances[instance_id];
+  const glm::mat4& to_object = sdf_.world_to_object[instance_id];
+  const glm::vec3 o(to_object * glm::vec4(ray.origin, 1.0f)), dir(glm::mat3(to_object) * ray.dir);
+  uint32_t tests = 0;
+  const bool crossed = exact_crossing(sdf_.mesh_grids[instance.mesh], scene_.meshes[instance.mesh], o, dir, t_lo,
+                                      t_hi, crossing, tests);
+  if (counts) (*counts)[COUNTER_TRIANGLE_TESTS] += tests;
+  return crossed;
+}
+
 // --hit thesis: the first converged point. --hit exact: a converged point where the ray crosses
 // no listed triangle passed the surface within epsilon (a silhouette), and the march goes on;
-// only a ray that runs out of steps falls back to its first converged point. The search covers one
+// a ray that runs out of steps tests the rest of its segment against the instance nearest to its
+// last point, and only then falls back to its first converged point. The search covers one
 // epsilon on either side of the converged point, as far as a step can go, so converging again
 // near the same instance before that segment's end needs no second test.
 bool SphereTracer::trace(const shading::Ray& ray, float tmax, SurfaceHit& hit, shading::PixelCounts* counts) const {
@@ -94,19 +108,14 @@ bool SphereTracer::trace(const shading::Ray& ray, float tmax, SurfaceHit& hit, s
   uint32_t cleared_instance = std::numeric_limits<uint32_t>::max();
   float cleared_until = 0.0f;
   SceneDistance d{};
+  d.instance = std::numeric_limits<uint32_t>::max();
+  float t_last = t;
   MarchEnd end;
-  while ((end = march(ray, t1, t, steps, d, counts)) == MarchEnd::converged) {
+  while ((end = march(ray, t1, t, steps, d, t_last, counts)) == MarchEnd::converged) {
     const float epsilon = epsilon_at(ray, t);
     if (exact && (d.instance != cleared_instance || t > cleared_until)) {
-      const Instance& instance = scene_.instances[d.instance];
-      const glm::mat4& to_object = sdf_.world_to_object[d.instance];
-      const glm::vec3 o(to_object * glm::vec4(ray.origin, 1.0f)), dir(glm::mat3(to_object) * ray.dir);
       Crossing crossing;
-      uint32_t tests = 0;
-      const bool crossed = exact_crossing(sdf_.mesh_grids[instance.mesh], scene_.meshes[instance.mesh], o, dir,
-                                          t - epsilon, t + epsilon, crossing, tests);
-      if (counts) (*counts)[COUNTER_TRIANGLE_TESTS] += tests;
-      if (crossed) {
+      if (instance_crossing(ray, d.instance, t - epsilon, t + epsilon, crossing, counts)) {
         if (crossing.t >= tmax) return false;
         hit = SurfaceHit{std::max(crossing.t, 0.0f), d.instance, crossing.triangle, crossing.uv};
         return true;
@@ -117,6 +126,18 @@ bool SphereTracer::trace(const shading::Ray& ray, float tmax, SurfaceHit& hit, s
     if (!first) first = SurfaceHit{t, d.instance, d.triangle, glm::vec2(0.0f)};
     if (!exact) break;
     t += epsilon;  // the converged distance is below it
+  }
+  if (end == MarchEnd::out_of_steps) {
+    if (counts) (*counts)[COUNTER_OUT_OF_STEPS] += 1;
+    // A grazing ray creeping along a surface: the rest of its segment goes to the exact test of
+    // the instance nearest to its last point (no surface was crossed before it).
+    Crossing crossing;
+    if (exact && d.instance != std::numeric_limits<uint32_t>::max() &&
+        instance_crossing(ray, d.instance, t_last - epsilon_at(ray, t_last), t1, crossing, counts)) {
+      if (crossing.t >= tmax) return false;
+      hit = SurfaceHit{std::max(crossing.t, 0.0f), d.instance, crossing.triangle, crossing.uv};
+      return true;
+    }
   }
   if (!first || (exact && end != MarchEnd::out_of_steps)) return false;
   hit = *first;

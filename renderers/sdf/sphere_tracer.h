@@ -3,6 +3,7 @@
 // backends use; its closest_hit/any_hit plug into the shared shading program.
 #include <cstdint>
 
+#include "renderers/sdf/exact_hit.h"
 #include "renderers/sdf/scene_hash.h"
 #include "renderers/sdf/traced_distance.h"
 #include "renderers/shading/gpu_types.h"
@@ -31,10 +32,14 @@ class SphereTracer {
   SphereTracer(const Scene& scene, const SceneSdf& sdf, const SphereTraceParams& params);
   bool closest_hit(shading::Ray ray, float tmax, shading::Hit& hit, shading::PixelCounts* counts) const;
   bool any_hit(shading::Ray ray, float tmax, shading::PixelCounts* counts) const;
+  // How far off the surface a hit can lie: 0 for --hit exact; --hit thesis's point lies within
+  // epsilon, and a ray leaving it starts kThesisOffsetEpsilons epsilons off (well outside).
+  float mesh_hit_tolerance() const { return params_.hit == HitMode::exact ? 0.0f : kThesisOffsetEpsilons * epsilon_; }
   // The frame's camera: --hit exact's footprint follows its pixel angle (before rendering it).
   void set_frame(const shading::FrameParams& frame);
 
  private:
+  static constexpr float kThesisOffsetEpsilons = 20.0f;  // SDF_THESIS_OFFSET_EPSILONS
   enum class MarchEnd { converged, left, out_of_steps };
   struct SurfaceHit {
     float t;
@@ -43,9 +48,13 @@ class SphereTracer {
   };
   // The hit threshold at t (sdf_trace.comp's hit_epsilon).
   float epsilon_at(const shading::Ray& ray, float t) const;
-  // Sphere tracing from t towards t1 with `steps` of the budget spent (sdf_trace.comp's march).
-  MarchEnd march(const shading::Ray& ray, float t1, float& t, uint32_t& steps, SceneDistance& at_hit,
+  // Sphere tracing from t towards t1 with `steps` of the budget spent; `last`: the distance at
+  // t_last, the last point queried (sdf_trace.comp's march).
+  MarchEnd march(const shading::Ray& ray, float t1, float& t, uint32_t& steps, SceneDistance& last, float& t_last,
                  shading::PixelCounts* counts) const;
+  // exact_crossing() of the ray with an instance's mesh over [t_lo, t_hi], its tests counted.
+  bool instance_crossing(const shading::Ray& ray, uint32_t instance_id, float t_lo, float t_hi, Crossing& crossing,
+                         shading::PixelCounts* counts) const;
   // The first surface before tmax (sdf_trace.comp's trace_sdf).
   bool trace(const shading::Ray& ray, float tmax, SurfaceHit& hit, shading::PixelCounts* counts) const;
 

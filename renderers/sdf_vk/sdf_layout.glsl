@@ -38,6 +38,8 @@ struct SdfParams {
 
 // --hit exact: the most mesh-grid cells one crossing search walks (a bound on the loop; a
 // segment of two hit epsilons crosses a few).
-#define SDF_EXACT_MAX_CELLS 64u
+#define SDF_EXACT_MAX_CELLS 512u
+// --hit thesis: rays leave a hit this many hit epsilons off the surface (kThesisOffsetEpsilons).
+#define SDF_THESIS_OFFSET_EPSILONS 20.0f
 
 #endif

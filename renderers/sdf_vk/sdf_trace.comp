@@ -48,10 +48,11 @@ const uint MARCH_CONVERGED = 0u;  // closer than epsilon to a listed triangle at
 const uint MARCH_LEFT = 1u;       // past t1: nothing there
 const uint MARCH_OUT_OF_STEPS = 2u;
 
-// Sphere tracing from t towards t1, `steps` of the ray's budget already spent. The end test
-// allows one epsilon past t1: a step that lands a rounding error beyond the box's far face
-// (a wall lying on it) would otherwise end the march in front of the surface.
-uint march(Ray ray, float t1, inout float t, inout uint steps, out SceneDistance at_hit) {
+// Sphere tracing from t towards t1, `steps` of the ray's budget already spent; `last` is the
+// distance at `t_last`, the last point queried (at a convergence: t). The end test allows one
+// epsilon past t1: a step that lands a rounding error beyond the box's far face (a wall lying on
+// it) would otherwise end the march in front of the surface.
+uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistance last, inout float t_last) {
   vec3 lo = sdf.hash_origin.xyz;
   vec3 hi = lo + vec3(sdf.hash_dims.xyz) * sdf.hash_origin.w;
   for (; steps < sdf.hash_dims.w; ++steps) {
@@ -61,9 +62,10 @@ uint march(Ray ray, float t1, inout float t, inout uint steps, out SceneDistance
     // Clamped: the clip's rounding can leave a point a hair outside the box, where a step would
     // be wasted (and wasted differently by sdf-cpu, so the counters would not agree).
     SceneDistance d = scene_distance(clamp(ray.origin + t * ray.dir, lo, hi));
+    last = d;
+    t_last = t;
     // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
     if (d.distance < epsilon && d.triangle != SDF_NONE) {
-      at_hit = d;
       ++steps;
       return MARCH_CONVERGED;
     }
@@ -133,8 +135,9 @@ bool exact_crossing(Ray ray, float t_lo, float t_hi, uint instance, out float t_
 // The first surface along the ray before tmax. --hit thesis: the first converged point, its
 // normal and uv from the closest point on the nearest triangle (as in the thesis). --hit exact:
 // a converged point where the ray crosses no listed triangle passed the surface within epsilon
-// (a silhouette), and the march goes on; only a ray that runs out of steps falls back to its
-// first converged point. The search covers one epsilon on either side of the converged point, as
+// (a silhouette), and the march goes on; a ray that runs out of steps tests the rest of its
+// segment against the instance nearest to its last point, and only then falls back to its first
+// converged point. The search covers one epsilon on either side of the converged point, as
 // far as a step can go, so converging again near the same instance before that segment's end
 // needs no second test.
 bool trace_sdf(Ray ray, float tmax, out float t, out uint instance, out uint triangle, out vec2 uv) {
@@ -148,9 +151,10 @@ bool trace_sdf(Ray ray, float tmax, out float t, out uint instance, out uint tri
   SceneDistance first;
   uint cleared_instance = SDF_NONE;
   float cleared_until = 0.0f;
-  SceneDistance d;
+  SceneDistance d = SceneDistance(0.0f, SDF_NONE, SDF_NONE);
+  float t_last = t;
   uint end;
-  while ((end = march(ray, t1, t, steps, d)) == MARCH_CONVERGED) {
+  while ((end = march(ray, t1, t, steps, d, t_last)) == MARCH_CONVERGED) {
     float epsilon = hit_epsilon(ray, t);
     if (exact && (d.instance != cleared_instance || t > cleared_until)) {
       float t_hit;
@@ -170,6 +174,19 @@ bool trace_sdf(Ray ray, float tmax, out float t, out uint instance, out uint tri
     }
     if (!exact) break;
     t += epsilon;  // the converged distance is below it
+  }
+  if (end == MARCH_OUT_OF_STEPS) {
+    COUNT(COUNTER_OUT_OF_STEPS, 1u);
+    // A grazing ray creeping along a surface: the rest of its segment goes to the exact test of
+    // the instance nearest to its last point (no surface was crossed before it).
+    float t_hit;
+    if (exact && d.instance != SDF_NONE &&
+        exact_crossing(ray, t_last - hit_epsilon(ray, t_last), t1, d.instance, t_hit, triangle, uv)) {
+      if (t_hit >= tmax) return false;
+      t = max(t_hit, 0.0f);
+      instance = d.instance;
+      return true;
+    }
   }
   if (!converged_before || (exact && end != MARCH_OUT_OF_STEPS)) return false;
   t = first_t;
@@ -205,6 +222,12 @@ bool closest_hit(Ray ray, float tmax, out Hit hit) {
   hit.normal = normalize(vec3(dot(uintBitsToFloat(o0.xyz), normal), dot(o1, normal), dot(o2, normal)));
   hit.uv = uv;
   return true;
+}
+
+// --hit exact: the ray-triangle crossing lies on the surface; --hit thesis: the converged point
+// lies within epsilon of it, and a ray leaving it must start well outside (as sdf-cpu).
+float mesh_hit_tolerance() {
+  return sdf.tracing.y > 0.5f ? 0.0f : SDF_THESIS_OFFSET_EPSILONS * sdf.tracing.x;
 }
 
 // Shadow rays: the first surface is enough (in exact mode the first crossing, as for closest_hit).

@@ -5,8 +5,8 @@
 
 namespace sdfbench::shading {
 
-// Tracer must provide closest_hit(Ray, float, Hit&, PixelCounts*) and any_hit(Ray, float,
-// PixelCounts*), const; they add their work to the counts when given some (instrumented frames).
+// Tracer must provide closest_hit(Ray, float, Hit&, PixelCounts*), any_hit(Ray, float,
+// PixelCounts*) and mesh_hit_tolerance(), const; they add their work to the counts when given some (instrumented frames).
 template <class Tracer>
 class CpuShading {
  public:
@@ -34,6 +34,7 @@ class CpuShading {
 
   bool closest_hit(Ray ray, float tmax, Hit& hit) { return tracer_.closest_hit(ray, tmax, hit, counts_); }
   bool any_hit(Ray ray, float tmax) { return tracer_.any_hit(ray, tmax, counts_); }
+  float mesh_hit_tolerance() const { return tracer_.mesh_hit_tolerance(); }
   vec4 texel_at(uint index) const { return texels[index]; }
   bool has_textures() const { return texels != nullptr; }
   bool has_implicits() const { return frame.limits.y > 0u; }

@@ -4,9 +4,10 @@
 // `uint shading_mode()` (MODE_*; both constants in the Vulkan kernels, so that code a frame
 // cannot use is compiled out), the pixel's ray stack `PathEntry stack_load(uint i)` /
 // `void stack_store(uint i, PathEntry e)` (whitted: STACK_SIZE entries) and the backend's two
-// queries
+// queries and the tolerance of its hits
 //   bool closest_hit(Ray ray, float tmax, OUT(Hit) hit)   nearest surface with t in (0, tmax)
 //   bool any_hit(Ray ray, float tmax)                      any surface with t in (0, tmax)
+//   float mesh_hit_tolerance()   how far off the surface a closest_hit point can lie (0: exact)
 // The floor is an analytic plane handled here, identically for every backend, and so are the
 // implicit objects (implicit_trace.glsl: `implicit_objects[]`, `implicit_nodes[]` and
 // `bool has_implicits()`, a constant in the Vulkan kernels).
@@ -28,11 +29,18 @@ bool floor_hit(Ray ray, float tmax, OUT(float) t) {
   return t > 0.0f && t < tmax;
 }
 
-bool trace_closest(Ray ray, float tmax, OUT(Hit) hit) {
+// The nearest surface of the scene (meshes, implicit objects, floor); `tolerance`: how far off
+// the surface the hit point can lie (offset_origin).
+bool trace_closest(Ray ray, float tmax, OUT(Hit) hit, OUT(float) tolerance) {
   bool found = closest_hit(ray, tmax, hit);
-  if (has_implicits() && implicit_closest(ray, found ? hit.t : tmax, hit)) found = true;
+  tolerance = mesh_hit_tolerance();
+  if (has_implicits() && implicit_closest(ray, found ? hit.t : tmax, hit)) {
+    found = true;
+    tolerance = IMPLICIT_OFFSET_EPSILONS * frame.tracing.w;
+  }
   float t;
   if (floor_hit(ray, found ? hit.t : tmax, t)) {
+    tolerance = 0.0f;
     vec3 p = ray.origin + t * ray.dir;
     hit.t = t;
     hit.instance = FLOOR_INSTANCE;
@@ -43,6 +51,19 @@ bool trace_closest(Ray ray, float tmax, OUT(Hit) hit) {
     found = true;
   }
   return found;
+}
+
+// Where a ray leaving the surface at p (n: the normal on the side it leaves by) starts: off the
+// surface by the float error of computing p (relative to `magnitude`, the largest of |p|, the
+// incoming ray's origin and t: the offset follows the hit, not the scene) plus the hit's
+// tolerance, so that it cannot hit that surface again, and no farther. The same rule for every
+// backend.
+vec3 offset_origin(vec3 p, vec3 n, float magnitude, float tolerance) {
+  return p + (RAY_OFFSET_RELATIVE * magnitude + tolerance) * n;
+}
+
+float max_abs_component(vec3 v) {
+  return max(abs(v.x), max(abs(v.y), abs(v.z)));
 }
 
 bool trace_occluded(Ray ray, float tmax) {
@@ -79,7 +100,7 @@ vec3 surface_albedo(uint material, vec2 uv) {
 }
 
 // Lambert from every light, plus ambient; shadow rays (counted in `rays`) unless in primary mode.
-vec3 direct_light(vec3 p, vec3 n, vec3 albedo, INOUT(uint) rays) {
+vec3 direct_light(vec3 p, vec3 n, float magnitude, float tolerance, vec3 albedo, INOUT(uint) rays) {
   vec3 result = albedo * frame.tracing.y;
   for (uint i = 0u; i < frame.image.w; ++i) {
     GpuLight light = lights[i];
@@ -94,7 +115,7 @@ vec3 direct_light(vec3 p, vec3 n, vec3 albedo, INOUT(uint) rays) {
     if (cosine <= 0.0f) continue;
     if (shading_mode() != MODE_PRIMARY) {
       rays++;
-      if (trace_occluded(Ray(p + frame.tracing.x * n, to_light), dist)) continue;
+      if (trace_occluded(Ray(offset_origin(p, n, magnitude, tolerance), to_light), dist)) continue;
     }
     result += albedo * vec3(light.color) * cosine;
   }
@@ -150,12 +171,14 @@ void trace_ray(PathEntry e, INOUT(PixelState) s, INOUT(PixelAov) aov) {
   Ray ray = Ray(vec3(e.origin), vec3(e.dir));
   vec3 weight = vec3(e.weight);
   Hit hit;
-  if (!trace_closest(ray, frame.tracing.z, hit)) {
+  float tolerance;
+  if (!trace_closest(ray, frame.tracing.z, hit, tolerance)) {
     s.color += vec4(weight * sky_color(ray.dir), 0.0f);
   } else {
     bool entering = dot(hit.normal, ray.dir) < 0.0f;
     vec3 n = entering ? hit.normal : -hit.normal;  // facing the ray: surfaces are two-sided
     vec3 p = ray.origin + hit.t * ray.dir;
+    float magnitude = max(max(max_abs_component(p), max_abs_component(ray.origin)), hit.t);
     if (e.origin.w == 0.0f) {
       aov.depth = hit.t;
       aov.instance = hit.instance;
@@ -184,14 +207,14 @@ void trace_ray(PathEntry e, INOUT(PixelState) s, INOUT(PixelAov) aov) {
     }
     vec3 w = weight * local;
     if (max_component(w) >= ENERGY_CUTOFF)
-      s.color += vec4(w * direct_light(p, n, surface_albedo(hit.material, hit.uv), s.counters.y), 0.0f);
+      s.color += vec4(w * direct_light(p, n, magnitude, tolerance, surface_albedo(hit.material, hit.uv), s.counters.y), 0.0f);
     // The limit also bounds the stack (STACK_SIZE), whatever frame.limits holds.
     if (shading_mode() == MODE_WHITTED && e.origin.w < float(min(frame.limits.x, MAX_DEPTH_LIMIT))) {
       float depth = e.origin.w + 1.0f;
       w = weight * transmitted;
-      if (max_component(w) >= ENERGY_CUTOFF) push_ray(s, p - frame.tracing.x * n, refracted, w, depth);
+      if (max_component(w) >= ENERGY_CUTOFF) push_ray(s, offset_origin(p, -n, magnitude, tolerance), refracted, w, depth);
       w = weight * reflected;
-      if (max_component(w) >= ENERGY_CUTOFF) push_ray(s, p + frame.tracing.x * n, reflect(ray.dir, n), w, depth);
+      if (max_component(w) >= ENERGY_CUTOFF) push_ray(s, offset_origin(p, n, magnitude, tolerance), reflect(ray.dir, n), w, depth);
     }
   }
 }

@@ -18,6 +18,12 @@
 #define MODE_WHITTED 2u
 
 #define MAX_DEPTH_LIMIT 16u  // whitted: deepest secondary ray (render.max_depth, --max-depth)
+// A ray leaving a surface starts this x the largest magnitude that computed its hit point off the
+// surface (~84 float ulps: p = origin + t dir and the ray-triangle t each round by a few).
+#define RAY_OFFSET_RELATIVE 1e-5f
+// ... plus, for an implicit object's hit (within its epsilon of the surface, not on it), this many
+// of its hit epsilons (frame.tracing.w): the ray must start well outside the surface it leaves.
+#define IMPLICIT_OFFSET_EPSILONS 20.0f
 #define ENERGY_CUTOFF 1e-3f  // whitted: rays whose weight's largest component is below this are dropped
 // Popping a ray of depth d pushes at most two of depth d + 1 (only when d < max_depth), so the
 // stack never holds more than one pending ray per depth plus the pair just pushed.
@@ -30,7 +36,8 @@
 #define COUNTER_TRIANGLE_EVALS 2u  // point-triangle distances
 #define COUNTER_AABB_TESTS 3u      // tri-aabb: ray-box slab tests; SDF: instance boxes tested to skip an instance
 #define COUNTER_TRIANGLE_TESTS 4u  // ray-triangle intersection tests (Möller-Trumbore)
-#define COUNTER_KINDS 5u
+#define COUNTER_OUT_OF_STEPS 5u    // SDF: rays whose march ended by --max-steps
+#define COUNTER_KINDS 6u
 #define COUNTERS_BINDING 32  // the per-pixel counters buffer: past every backend's bindings (8 and up)
 
 #define NO_INSTANCE 0xffffffffu     // the ray escaped to the sky
@@ -72,7 +79,7 @@ struct FrameParams {
   vec4 sky_zenith;
   vec4 sky_horizon;
   vec4 floor;    // x: height, y: material index, z: 1 when the floor exists
-  vec4 tracing;  // x: ray offset epsilon, y: ambient, z: max ray distance, w: implicit hit epsilon
+  vec4 tracing;  // x: unused, y: ambient, z: max ray distance, w: implicit hit epsilon
   uvec4 image;   // x: width, y: height, z: mode (MODE_*), w: light count
   uvec4 limits;  // x: whitted max recursion depth (capped at MAX_DEPTH_LIMIT), y: implicit objects
 };

@@ -77,6 +77,8 @@ bool closest_hit(Ray ray, float tmax, out Hit hit) {
   return true;
 }
 
+float mesh_hit_tolerance() { return 0.0f; }  // ray-triangle hits lie on the triangle
+
 bool any_hit(Ray ray, float tmax) {
   vec3 inv_dir = safe_inverse(ray.dir);
   uint count = uint(instances.length());
