@@ -34,10 +34,37 @@ std::string describe(const BenchConfig& c) {
 
 // An error in one configuration (e.g. a structure over the device's buffer limit) is a row
 // saying so, not the end of a run of hours.
-Measurement error_row(const BenchConfig& c, size_t index, const std::string& message) {
-  Measurement m = configuration_fields(c, index);
+Measurement error_row(const BenchConfig& c, size_t index, const BenchSettings& settings, const std::string& message) {
+  Measurement m = configuration_fields(c, index, settings);
   m.agreement = "ERROR: " + message;
   return m;
+}
+
+// A resumed file must hold rows of this very run: each row the configuration its run_index
+// names in this plan, equal in every key column, and none twice. Anything else (a sweep's CSV
+// resumed as a table, other flags) would mix measurements of different settings in one file.
+std::set<std::string> resumed_keys(const CsvTable& table, const std::vector<BenchConfig>& plan, const BenchSettings& settings) {
+  const std::string file = "--resume: '" + table.source + "'";
+  const std::string advice = ": it belongs to another run; resume with the flags of the run that wrote it, or use a new --csv";
+  std::set<std::string> keys;
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    const std::string row = " row " + std::to_string(r + 1);
+    const size_t index = row_run_index(table, r, table.source);
+    if (index >= plan.size())
+      throw Error(file + row + " has run_index " + std::to_string(index) + ", but this run has " +
+                  std::to_string(plan.size()) + " configurations" + advice);
+    const std::vector<std::string> ours = to_csv_fields(configuration_fields(plan[index], index, settings));
+    for (const std::string& name : configuration_key_columns()) {
+      const std::string& theirs = table.rows[r][table.column(name)];
+      const std::string& wanted = ours[table.column(name)];  // same columns: checked by the caller
+      if (theirs != wanted)
+        throw Error(file + row + " (run_index " + std::to_string(index) + ") was measured with " + name + " '" + theirs +
+                    "', this run asks for '" + wanted + "'" + advice);
+    }
+    if (!keys.insert(configuration_key(table.rows[r], table.columns)).second)
+      throw Error(file + row + " measures run_index " + std::to_string(index) + " again; use a new --csv");
+  }
+  return keys;
 }
 
 }  // namespace
@@ -87,22 +114,26 @@ template std::vector<size_t> parse_list<size_t>(const std::string&, const std::s
 CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner, const PlanOptions& options) {
   CsvTable table;
   table.columns = measurement_columns();
-  if (!options.csv.empty()) check_output_path(options.csv, "--csv");
+  std::optional<OutputLock> lock;  // held for the whole run: another run on this CSV would replace its rows
   std::set<std::string> done;
-  if (options.resume && !options.csv.empty() && std::filesystem::exists(options.csv)) {
-    table = read_csv(options.csv);
-    if (table.columns != measurement_columns())
-      throw Error("--resume: '" + options.csv + "' has other columns than this sdfbench writes; use a new --csv file");
-    for (const auto& row : table.rows) done.insert(configuration_key(row, table.columns));
-  } else if (!options.resume && !options.csv.empty() && std::filesystem::exists(options.csv)) {
-    std::cerr << "note: overwriting '" << options.csv << "' (--resume continues a file instead)\n";
+  if (!options.csv.empty()) {
+    check_output_path(options.csv, "--csv");
+    lock.emplace(options.csv, "--csv");
+    if (options.resume && std::filesystem::exists(options.csv)) {
+      table = read_csv(options.csv);
+      if (table.columns != measurement_columns())
+        throw Error("--resume: '" + options.csv + "' has other columns than this sdfbench writes; use a new --csv file");
+      done = resumed_keys(table, plan, runner.settings());
+    } else if (!options.resume && std::filesystem::exists(options.csv)) {
+      std::cerr << "note: overwriting '" << options.csv << "' (--resume continues a file instead)\n";
+    }
   }
 
   std::vector<size_t> todo;
   size_t resumed = 0;
   for (size_t i = 0; i < plan.size(); ++i) {
     if (!in_shard(i, options.shard)) continue;
-    if (done.count(configuration_key(configuration_fields(plan[i], i)))) ++resumed;
+    if (done.count(configuration_key(configuration_fields(plan[i], i, runner.settings())))) ++resumed;
     else todo.push_back(i);
   }
   if (resumed) std::cerr << "resume: " << resumed << " configuration(s) already in '" << options.csv << "'\n";
@@ -118,7 +149,7 @@ CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner,
     try {
       m = runner.run(config, todo[k]);
     } catch (const Error& e) {
-      m = error_row(config, todo[k], e.what());
+      m = error_row(config, todo[k], runner.settings(), e.what());
       std::cerr << "  error: " << e.what() << "\n";
     }
     std::printf("  %-10s %-8s %9.3f ms  %8.2f FPS  %7.3f Mrays/s  %s%s\n", m.backend.c_str(), m.mode.c_str(), m.ms_median,

@@ -29,7 +29,7 @@ std::pair<std::string, size_t> mesh_summary(const Scene& scene) {
 
 }  // namespace
 
-Measurement configuration_fields(const BenchConfig& config, size_t run_index) {
+Measurement configuration_fields(const BenchConfig& config, size_t run_index, const BenchSettings& settings) {
   Measurement m;
   m.run_index = run_index;
   m.table = config.table;
@@ -44,9 +44,25 @@ Measurement configuration_fields(const BenchConfig& config, size_t run_index) {
     m.hash_cell = p.hash_cell;
     m.octree_depth = p.octree_depth;
     m.octree_min_objects = p.octree_min_objects;
+    m.octree_min_size = p.octree_min_size;
+    m.lists = p.lists == sdf::ListRule::Exact ? "exact" : "thesis";
     m.mesh_cell = config.options.mesh_grid.cell_size;
-    m.hit = config.options.tracing.hit == sdf::HitMode::exact ? "exact" : "thesis";
+    if (config.options.mesh_grid.cell_size <= 0) m.cells_per_extent = config.options.mesh_grid.cells_per_extent;
+    const sdf::SphereTraceParams& t = config.options.tracing;
+    m.hit = t.hit == sdf::HitMode::exact ? "exact" : "thesis";
+    m.max_steps = t.max_steps;
+    m.hit_epsilon = t.hit_epsilon;
+    m.hit_footprint = t.footprint;
   }
+  m.requested_frames = settings.frames;
+  m.warmup = settings.warmup;
+  m.budget_s = settings.budget_s;
+  m.check_size = std::to_string(settings.check_size.width) + "x" + std::to_string(settings.check_size.height);
+  m.reference = settings.reference;
+  m.requested_device = config.options.device;
+  m.whitted_passes = !config.options.whitted_passes ? "auto" : *config.options.whitted_passes ? "on" : "off";
+  m.validate = config.options.validation;
+  m.threads = cpu_thread_count(config.options);
   return m;
 }
 
@@ -72,7 +88,7 @@ const FrameImages& BenchmarkRunner::reference(const BenchConfig& config) {
 
 Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   const Scene& s = scene(config.scene);
-  Measurement m = configuration_fields(config, run_index);
+  Measurement m = configuration_fields(config, run_index, settings_);
   std::tie(m.mesh, m.triangles) = mesh_summary(s);
   m.objects = s.instances.size();
 
@@ -117,7 +133,6 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
 
   // Agreement and work counters at the check size: one untimed, instrumented frame (the
   // counters change no pixel).
-  m.check_size = std::to_string(settings_.check_size.width) + "x" + std::to_string(settings_.check_size.height);
   const FrameRequest check{settings_.check_size.width, settings_.check_size.height, config.mode, true, config.max_depth, true};
   const FrameResult checked = renderer->render(check);
   auto per_ray = [&](uint32_t kind) -> std::optional<double> {
@@ -151,7 +166,6 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   m.device = renderer->device_name();
   m.driver = renderer->driver_name();
   m.cpu = cpu_model();
-  m.threads = cpu_thread_count(config.options);
   m.commit = git_commit();
   return m;
 }

@@ -24,10 +24,6 @@ struct BenchConfig {
   BackendOptions options;
 };
 
-// The configuration columns of a row (no scene loaded, nothing run): what resume and error
-// rows use, and what run() starts from.
-Measurement configuration_fields(const BenchConfig& config, size_t run_index);
-
 struct BenchSettings {
   unsigned warmup = 1, frames = 5;
   double budget_s = 300;  // per configuration, from the first warm-up frame on
@@ -36,10 +32,16 @@ struct BenchSettings {
   AgreementThresholds thresholds;
 };
 
+// The configuration columns of a row, every key column (measurement.h) included, from the
+// configuration and the run's settings alone (no scene loaded, nothing run): what resume and
+// error rows use, and what run() starts from.
+Measurement configuration_fields(const BenchConfig& config, size_t run_index, const BenchSettings& settings);
+
 class BenchmarkRunner {
  public:
   explicit BenchmarkRunner(BenchSettings settings) : settings_(std::move(settings)) {}
   Measurement run(const BenchConfig& config, size_t run_index);
+  const BenchSettings& settings() const { return settings_; }
 
  private:
   const Scene& scene(const std::string& spec);

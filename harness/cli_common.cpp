@@ -1,26 +1,65 @@
 #include "harness/cli_common.h"
 
 #include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "renderers/shading/gpu_types.h"
 #include "scenes/error.h"
+#include "util/input_file.h"
 
 namespace sdfbench {
 
-ImageSize parse_size(const std::string& text) {
+namespace {
+
+std::string short_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
+}  // namespace
+
+CLI::Validator number_in(double lo, double hi, bool lo_open) {
+  const std::string range = (lo_open ? "(" : "[") + short_number(lo) + ", " + short_number(hi) + "]";
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double v = 0.0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v))
+          return "expected a number in " + range + ", got '" + text + "'";
+        if (v < lo || v > hi || (lo_open && v == lo)) return "must be in " + range + ", got " + text;
+        return std::string();
+      },
+      "FLOAT in " + range);
+}
+
+void check_image_size(ImageSize size, const std::string& what) {
+  if (size.width < 1 || size.height < 1 || size.width > kMaxImageSide || size.height > kMaxImageSide)
+    throw Error(what + ": width and height must be between 1 and " + std::to_string(kMaxImageSide));
+  const uint64_t pixels = uint64_t(size.width) * size.height;
+  if (pixels > kMaxImagePixels)
+    throw Error(what + ": " + std::to_string(pixels) + " pixels, more than the limit of " +
+                std::to_string(kMaxImagePixels) + " (8192x4096): the frame's images would need about " +
+                describe_bytes(pixels * 44) + " each");
+}
+
+ImageSize parse_size(const std::string& text, const std::string& flag) {
+  const std::string what = flag + " '" + (text.size() > 40 ? text.substr(0, 40) + "..." : text) + "'";
   const size_t x = text.find('x');
   auto parse = [&](const std::string& part) {
-    uint32_t v = 0;
+    uint64_t v = 0;
     const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), v);
-    if (part.empty() || ec != std::errc() || end != part.data() + part.size())
-      throw Error("--size '" + text + "': expected WIDTHxHEIGHT, e.g. 320x180");
-    return v;
+    if (part.empty() || end != part.data() + part.size() || (ec != std::errc() && ec != std::errc::result_out_of_range))
+      throw Error(what + ": expected WIDTHxHEIGHT, e.g. 320x180");
+    if (ec == std::errc::result_out_of_range || v > kMaxImageSide)
+      throw Error(what + ": width and height must be between 1 and " + std::to_string(kMaxImageSide));
+    return static_cast<uint32_t>(v);
   };
-  if (x == std::string::npos) throw Error("--size '" + text + "': expected WIDTHxHEIGHT, e.g. 320x180");
+  if (x == std::string::npos) throw Error(what + ": expected WIDTHxHEIGHT, e.g. 320x180");
   const ImageSize size{parse(text.substr(0, x)), parse(text.substr(x + 1))};
-  if (size.width < 1 || size.height < 1 || size.width > 16384 || size.height > 16384)
-    throw Error("--size '" + text + "': width and height must be between 1 and 16384");
+  check_image_size(size, what);
   return size;
 }
 
@@ -53,35 +92,41 @@ void add_backend_options(CLI::App& command, BackendOptions& options) {
 void add_structure_options(CLI::App& command, BackendOptions& options) {
   const std::string group = "SDF structures";
   command.add_option("--mesh-cell", options.mesh_grid.cell_size, "mesh distance grid cell size in mesh units (0: from --cells-per-extent)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(group);
+      ->capture_default_str()->check(number_in(0.0, 1e30))->group(group);
   command.add_option("--cells-per-extent", options.mesh_grid.cells_per_extent, "mesh grid cells along the mesh's largest extent")
       ->capture_default_str()->check(CLI::Range(1u, 1024u))->group(group);
   command.add_option("--hash-cell", options.scene_hash.hash_cell,
                      "scene hash cell size (thesis: 10 with octree, 1 without; sdf-hash defaults to 1)")
-      ->capture_default_str()->check(CLI::PositiveNumber)->group(group)
+      ->capture_default_str()->check(number_in(1e-30, 1e30))->group(group)
       ->each([&options](const std::string&) { options.hash_cell_given = true; });
   command.add_option("--octree-depth", options.scene_hash.octree_depth, "octree depth per hash cell (0: hash only)")
       ->capture_default_str()->check(CLI::Range(0u, 16u))->group(group);
   command.add_option("--octree-min-objects", options.scene_hash.octree_min_objects, "octree leaf when a node lists <= this many instances")
       ->capture_default_str()->check(CLI::Range(1u, 1000000u))->group(group);
   command.add_option("--octree-min-size", options.scene_hash.octree_min_size, "octree leaf when a node's edge is <= this (thesis: 1)")
-      ->capture_default_str()->check(CLI::PositiveNumber)->group(group);
+      ->capture_default_str()->check(number_in(1e-30, 1e30))->group(group);
   command.add_option("--lists", options.scene_hash.lists, "instance lists: exact (default) or thesis (influence AABB)")
       ->transform(CLI::CheckedTransformer(std::map<std::string, sdf::ListRule>{{"exact", sdf::ListRule::Exact},
                                                                               {"thesis", sdf::ListRule::Thesis}},
                                           CLI::ignore_case))
       ->group(group);
+  command.add_option_function<uint64_t>(
+             "--max-structure-mb",
+             [&options](uint64_t mb) { options.mesh_grid.max_bytes = options.scene_hash.max_bytes = mb << 20; },
+             "memory cap of each SDF structure (a mesh grid's lists, the scene hash's octrees): a build that grows past "
+             "it stops with an error (default " + std::to_string(sdf::kDefaultMaxStructureBytes >> 20) + ")")
+      ->check(CLI::Range(uint64_t(1), uint64_t(16384)))->group(group);
   add_tracing_options(command, options.tracing, group);
 }
 
 void add_tracing_options(CLI::App& command, sdf::SphereTraceParams& tracing, const std::string& group) {
   command.add_option("--max-steps", tracing.max_steps, "sphere-tracing steps per ray")
       ->capture_default_str()->check(CLI::Range(1u, 1000000u))->group(group);
-  command.add_option("--hit-epsilon", tracing.hit_epsilon, "--hit thesis: sphere-tracing hit distance, relative to the scene size")
-      ->capture_default_str()->check(CLI::PositiveNumber)->group(group);
+  command.add_option("--hit-epsilon", tracing.hit_epsilon, "--hit thesis: sphere-tracing hit distance, relative to the scene size (beyond 1e-2 objects blur and vanish)")
+      ->capture_default_str()->check(number_in(1e-8, 1e-2))->group(group);
   command.add_option("--hit-footprint", tracing.footprint,
                      "--hit exact: hit distance as a fraction of a pixel's footprint at the ray's length")
-      ->capture_default_str()->check(CLI::Range(1e-4f, 4.0f))->group(group);
+      ->capture_default_str()->check(number_in(1e-4, 1.0))->group(group);
   command.add_option("--hit", tracing.hit,
                      "SDF hits: exact (default: the ray's crossing with the triangles listed where it converged) or "
                      "thesis (the converged point, the closest point's normal and uv)")
@@ -111,7 +156,9 @@ std::string describe_mode(const FrameRequest& request, const Scene& scene) {
 
 ImageSize frame_size(const std::string& size_option, const Scene& scene) {
   if (!size_option.empty()) return parse_size(size_option);
-  return {scene.render.width, scene.render.height};
+  const ImageSize size{scene.render.width, scene.render.height};
+  check_image_size(size, scene.name + ": render.width x render.height");
+  return size;
 }
 
 std::string describe_scene(const Scene& scene) {

@@ -14,8 +14,20 @@ struct ImageSize {
   uint32_t width = 0, height = 0;
 };
 
-// "WxH", both in [1, 16384]; throws Error otherwise.
-ImageSize parse_size(const std::string& text);
+// Frame sizes every command accepts: each side up to kMaxImageSide, and at most kMaxImagePixels
+// in all, so that the frame's images (~44 bytes per pixel for each one held, more on the
+// backend's side) are refused up front rather than running out of memory mid-render.
+inline constexpr uint32_t kMaxImageSide = 16384;
+inline constexpr uint64_t kMaxImagePixels = uint64_t(1) << 25;  // 8192x4096; 7680x4320 fits
+
+// "WxH" within the limits above; throws Error naming `flag` otherwise.
+ImageSize parse_size(const std::string& text, const std::string& flag = "--size");
+// Throws Error unless `size` is within the limits above; `what` names where it came from.
+void check_image_size(ImageSize size, const std::string& what);
+
+// A CLI11 check for a finite number in [lo, hi] (or (lo, hi] when lo_open), whose message names
+// the range in a few digits (CLI11's own prints doubles' limits in full: 309 digits).
+CLI::Validator number_in(double lo, double hi, bool lo_open = false);
 
 // --device, --threads, --validate and the structure options below
 void add_backend_options(CLI::App& command, BackendOptions& options);

@@ -46,6 +46,7 @@ void run_build(const BuildArgs& args) {
   sdf::validate(args.options.scene_hash);
   if (!args.cache.empty()) check_output_path(args.cache, "--cache");
   const Scene scene = load_scene(args.scene);
+  sdf::scene_hash_dims(scene, args.options.scene_hash);  // refused before the mesh grids are built
   std::cout << "scene       " << describe_scene(scene) << "\n" << std::flush;
   sdf::SceneSdf sdf;
   for (const Mesh& mesh : scene.meshes) {

@@ -102,17 +102,18 @@ void register_compare_command(CLI::App& app) {
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT (default: the scene's render size)");
   cmd->add_option("--out-dir", args->out_dir, "also write each backend's image as DIR/<backend>.png");
   cmd->add_option("--min-hit", args->thresholds.min_hit_percent, "minimum hit-mask agreement, % of pixels")
-      ->capture_default_str()->check(CLI::Range(0.0, 100.0));
+      ->capture_default_str()->check(number_in(0.0, 100.0));
   cmd->add_option("--min-id", args->thresholds.min_id_percent,
                   "minimum instance-id agreement, % of pixels where either image hit an instance")
-      ->capture_default_str()->check(CLI::Range(0.0, 100.0));
+      ->capture_default_str()->check(number_in(0.0, 100.0));
   cmd->add_option("--max-id-mismatches", args->thresholds.max_id_mismatches,
                   "--min-id passes anyway when at most this many pixels differ (tiny objects)")
       ->capture_default_str();
   cmd->add_option("--max-depth-error", args->thresholds.max_depth_p99,
                   "maximum 99th percentile of relative depth error where both hit the same instance")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_option("--min-psnr", args->thresholds.min_psnr, "minimum PSNR of the shaded image, dB")->capture_default_str();
+      ->capture_default_str()->check(number_in(0.0, 1e30));
+  cmd->add_option("--min-psnr", args->thresholds.min_psnr, "minimum PSNR of the shaded image, dB")->capture_default_str()
+      ->check(number_in(-1000.0, 1000.0));
   add_backend_options(*cmd, args->backend_options);
   cmd->callback([args] { run_compare(*args); });
 }

@@ -1,30 +1,16 @@
 // `sdfbench inspect FILE`: validate an SDF cache completely and describe it.
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 
 #include "harness/commands.h"
 #include "renderers/sdf/sdf_cache_format.h"
-#include "scenes/error.h"
+#include "util/input_file.h"
 
 namespace sdfbench {
 namespace {
 
-std::vector<std::byte> read_bytes(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw Error("'" + path + "' is not a readable file");
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<char> chars((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw Error("cannot read '" + path + "'");
-  std::vector<std::byte> bytes(chars.size());
-  std::memcpy(bytes.data(), chars.data(), chars.size());
-  return bytes;
-}
-
 void run_inspect(const std::string& path) {
-  const sdf::SdfCacheContents c = sdf::decode_sdf_cache(read_bytes(path), path);
+  const sdf::SdfCacheContents c =
+      sdf::decode_sdf_cache(read_input_bytes(path, "SDF cache", sdf::kMaxSdfCacheBytes), path);
   const sdf::MeshGridParams& m = c.mesh_params;
   const sdf::SceneHashParams& h = c.hash_params;
   std::printf("file         %s (%llu bytes), valid\n", path.c_str(), static_cast<unsigned long long>(c.file_bytes));

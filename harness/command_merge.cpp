@@ -1,7 +1,6 @@
 // `sdfbench merge`: join the CSVs of shards (or of separate runs) into one, checking that they
-// have the same columns and do not measure the same configuration twice.
+// have the same columns, valid run indices and do not measure the same configuration twice.
 #include <algorithm>
-#include <cstdlib>
 #include <iostream>
 #include <map>
 
@@ -22,27 +21,30 @@ struct MergeArgs {
 
 void run_merge(const MergeArgs& args) {
   check_output_path(args.csv, "--csv");
+  if (!args.markdown.empty()) check_output_path(args.markdown, "--markdown");
+  const OutputLock lock(args.csv, "--csv");  // not while a table or sweep is writing it
   CsvTable merged;
-  std::map<std::string, std::string> seen;  // configuration key -> file
+  std::vector<std::pair<size_t, std::vector<std::string>>> rows;  // run_index, fields
+  std::map<std::string, std::string> seen;                         // configuration key -> file
   for (const std::string& path : args.inputs) {
     CsvTable t = read_csv(path);
     if (merged.columns.empty()) merged.columns = t.columns;
     if (t.columns != merged.columns)
       throw Error("'" + path + "' has other columns than '" + args.inputs.front() + "': cannot merge them");
-    for (auto& row : t.rows) {
-      const std::string key = configuration_key(row, t.columns);
+    const size_t scene = t.column("scene"), backend = t.column("backend"), mode = t.column("mode");
+    for (size_t r = 0; r < t.rows.size(); ++r) {
+      const size_t index = row_run_index(t, r, path);
+      const std::string key = configuration_key(t.rows[r], t.columns);
       if (const auto it = seen.find(key); it != seen.end())
-        throw Error("'" + path + "' and '" + it->second + "' both measure " + row[t.column("scene")] + " " +
-                    row[t.column("backend")] + " " + row[t.column("mode")] + " (overlapping shards?)");
+        throw Error("'" + path + "' and '" + it->second + "' both measure " + t.rows[r][scene] + " " + t.rows[r][backend] +
+                    " " + t.rows[r][mode] + " (overlapping shards?)");
       seen[key] = path;
-      merged.rows.push_back(std::move(row));
+      rows.emplace_back(index, std::move(t.rows[r]));
     }
   }
   // Back in the order of the unsharded run.
-  const size_t index = merged.column("run_index");
-  std::stable_sort(merged.rows.begin(), merged.rows.end(), [index](const auto& a, const auto& b) {
-    return std::strtoull(a[index].c_str(), nullptr, 10) < std::strtoull(b[index].c_str(), nullptr, 10);
-  });
+  std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& row : rows) merged.rows.push_back(std::move(row.second));
   write_csv(args.csv, merged);
   write_markdown(args.markdown, merged);
   std::cout << "merged " << merged.rows.size() << " rows from " << args.inputs.size() << " files into " << args.csv << "\n";

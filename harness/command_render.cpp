@@ -71,7 +71,7 @@ FrameImages structure_view(const RenderArgs& args, const Scene& scene, const Fra
 void run_render(const RenderArgs& args) {
   const RenderMode mode = parse_mode_option(args.mode);
   if (!args.out.empty()) check_image_path(args.out, "--out");
-  if (!args.aov.empty()) check_image_path(args.aov, "--aov");
+  if (!args.aov.empty()) check_aov_path(args.aov, "--aov");
   if (!args.view.empty() && args.out.empty()) throw Error("--view draws over the --out image: give --out");
   if (!args.heatmap.empty()) {
     check_image_path(args.heatmap, "--heatmap");

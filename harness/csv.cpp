@@ -1,17 +1,15 @@
 #include "harness/csv.h"
 
-#include <fstream>
-#include <sstream>
-
 #include "scenes/error.h"
 #include "util/atomic_file.h"
+#include "util/input_file.h"
 
 namespace sdfbench {
 
 size_t CsvTable::column(const std::string& name) const {
   for (size_t i = 0; i < columns.size(); ++i)
     if (columns[i] == name) return i;
-  throw Error("CSV has no column '" + name + "'");
+  throw Error((source.empty() ? "CSV" : "'" + source + "'") + " has no column '" + name + "'");
 }
 
 std::string csv_escape(const std::string& field) {
@@ -82,6 +80,7 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
   }
   if (records.empty()) throw Error(source + ": empty CSV file (no header row)");
   CsvTable table;
+  table.source = source;
   table.columns = std::move(records.front());
   for (size_t r = 1; r < records.size(); ++r) {
     if (records[r].size() == 1 && records[r][0].empty()) continue;  // blank line
@@ -94,11 +93,7 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
 }
 
 CsvTable read_csv(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot read CSV '" + path.string() + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_csv(text.str(), path.string());
+  return parse_csv(read_input_file(path, "CSV", kMaxCsvBytes), path.string());
 }
 
 void write_csv(const std::filesystem::path& path, const CsvTable& table) {

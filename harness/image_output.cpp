@@ -1,7 +1,10 @@
 #include "harness/image_output.h"
 
 #include <algorithm>
+#include <cctype>
+#include <memory>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "renderers/shading/gpu_types.h"
@@ -13,19 +16,32 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write_atomically(const fs::path& path, const OIIO::ImageSpec& spec, const void* pixels, OIIO::TypeDesc type) {
-  const fs::path temp = temp_path_for(path);
+// An image writer for `path`'s format that can encode into memory, or Error naming `what`.
+std::unique_ptr<OIIO::ImageOutput> create_output(const fs::path& path, const std::string& what) {
   auto out = OIIO::ImageOutput::create(path.string());
-  if (!out) throw Error("cannot write '" + path.string() + "': unsupported image format");
-  if (!out->open(temp.string(), spec) || !out->write_image(type, pixels) || !out->close()) {
-    const std::string message = out->geterror();
-    out.reset();
-    std::error_code ec;
-    fs::remove(temp, ec);
-    throw Error("cannot write '" + path.string() + "': " + message);
-  }
+  if (!out) throw Error(what + " '" + path.string() + "': unsupported image format (use .png, .exr, .tif, ...)");
+  if (!out->supports("ioproxy"))
+    throw Error(what + " '" + path.string() + "': OpenImageIO cannot write " + out->format_name() +
+                " images to memory, which sdfbench needs to write them safely (use .png, .exr, .tif, ...)");
+  return out;
+}
+
+// Encoded in memory, then written with write_file_atomically: the image goes through the one
+// safe way to write an output, never through a file OpenImageIO opens by name.
+void write_atomically(const fs::path& path, const OIIO::ImageSpec& spec, const void* pixels, OIIO::TypeDesc type) {
+  auto out = create_output(path, "cannot write");
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
+  if (!out->set_ioproxy(&memory) || !out->open(path.string(), spec) || !out->write_image(type, pixels) || !out->close())
+    throw Error("cannot write '" + path.string() + "': " + out->geterror());
   out.reset();
-  commit_temp_file(temp, path);
+  write_file_atomically(path, std::as_bytes(std::span(encoded.data(), encoded.size())));
+}
+
+bool is_exr(const fs::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".exr";
 }
 
 float id_to_float(uint32_t id) {
@@ -47,10 +63,14 @@ glm::vec3 colour_map(float x) {
 }  // namespace
 
 void check_image_path(const fs::path& path, const char* what) {
-  if (path.empty()) throw Error(std::string(what) + ": empty file name");
-  if (!OIIO::ImageOutput::create(path.string()))
-    throw Error(std::string(what) + " '" + path.string() + "': unsupported image format (use .png, .exr, .tif, ...)");
   check_output_path(path, what);
+  create_output(path, what);
+}
+
+void check_aov_path(const fs::path& path, const char* what) {
+  if (!path.empty() && !is_exr(path))
+    throw Error(std::string(what) + " '" + path.string() + "': the AOVs are 7 float channels, which only OpenEXR holds (use .exr)");
+  check_image_path(path, what);
 }
 
 void write_color_image(const FrameImages& images, const fs::path& path) {
@@ -77,6 +97,7 @@ HeatmapRange write_heatmap(const std::vector<uint32_t>& values, uint32_t width, 
 }
 
 void write_aov_image(const FrameImages& images, const fs::path& path) {
+  check_aov_path(path, "--aov");
   constexpr int kChannels = 7;
   OIIO::ImageSpec spec(static_cast<int>(images.width), static_cast<int>(images.height), kChannels, OIIO::TypeDesc::FLOAT);
   spec.channelnames = {"hit", "depth", "instance_id", "primitive_id", "N.x", "N.y", "N.z"};

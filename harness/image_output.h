@@ -6,10 +6,15 @@
 namespace sdfbench {
 
 // Fails early (before a long render) when `path` cannot be written: missing or read-only
-// directory, or an image format OpenImageIO does not know.
+// directory, something other than a regular file in its place, or an image format OpenImageIO
+// does not know or cannot encode into memory.
 void check_image_path(const std::filesystem::path& path, const char* what);
+// The same for the AOV file, which must also be an EXR (the only format holding its 7 float channels).
+void check_aov_path(const std::filesystem::path& path, const char* what);
 
-// Writes the shaded image (PNG, EXR, ... by extension) atomically: temp file + rename.
+// The writers encode in memory and write the bytes with write_file_atomically (util/atomic_file.h).
+
+// Writes the shaded image (PNG, EXR, ... by extension).
 void write_color_image(const FrameImages& images, const std::filesystem::path& path);
 
 // The value range of a heat map: `top` is yellow (and everything above it), `max` the largest value.
@@ -24,7 +29,8 @@ HeatmapRange write_heatmap(const std::vector<uint32_t>& values, uint32_t width, 
                            const std::filesystem::path& path);
 
 // Writes the AOVs as one multi-channel float image (EXR): hit (1 where an instance was hit),
-// depth, instance_id (-1: sky, -2: floor), primitive_id (-1: sky), N.x, N.y, N.z.
+// depth, instance_id (-1: sky, -2: floor), primitive_id (-1: sky), N.x, N.y, N.z. Refuses any
+// other extension than .exr.
 void write_aov_image(const FrameImages& images, const std::filesystem::path& path);
 
 }  // namespace sdfbench

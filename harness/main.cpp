@@ -1,12 +1,35 @@
 // sdfbench: reproduce and extend Menezes 2019 (hierarchical scene SDFs) against triangle
 // ray tracers; see README.md.
+#include <cstdio>
 #include <iostream>
+#include <new>
+#include <stdexcept>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "harness/commands.h"
 #include "scenes/error.h"
+
+namespace {
+
+// One line whatever the message holds: a newline or other control character (a JSON key such as
+// "a\nb" quoted in an error) is written as an escape.
+std::string one_line(const std::string& message) {
+  std::string out;
+  for (const char c : message) {
+    if (static_cast<unsigned char>(c) >= 0x20 && c != 0x7f) {
+      out += c;
+    } else {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", static_cast<unsigned char>(c));
+      out += escaped;
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"sdfbench: a benchmark harness for ray tracing acceleration structures (SDF hash/octree vs triangles)"};
@@ -43,12 +66,21 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // Bad flags are user errors like any other: one line, exit 1 (CLI11's own codes vary).
-    std::cerr << "sdfbench: error: " << e.what() << "\n(run with --help for usage)\n";
+    std::cerr << "sdfbench: error: " << e.what() << " (run with --help for usage)\n";
     return 1;
   } catch (const sdfbench::CommandFailed& e) {
     return e.code;
   } catch (const sdfbench::Error& e) {
-    std::cerr << "sdfbench: error: " << e.what() << "\n";
+    std::cerr << "sdfbench: error: " << one_line(e.what()) << "\n";
+    return 1;
+  } catch (const std::length_error&) {  // a container asked for more than it can hold: a size, not a bug
+    std::cerr << "sdfbench: error: out of memory: a structure or image size exceeds what can be allocated "
+                 "(try a smaller --size, fewer objects or coarser SDF structures)\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    // Sizes the commands can estimate are refused up front; this is what slipped past them.
+    std::cerr << "sdfbench: error: out of memory: the scene, its structures or the frame need more memory than "
+                 "this machine can give (try a smaller --size, fewer objects or coarser SDF structures)\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "sdfbench: internal error: " << e.what() << "\n";

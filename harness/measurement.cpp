@@ -1,7 +1,10 @@
 #include "harness/measurement.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+
+#include "scenes/error.h"
 
 namespace sdfbench {
 namespace {
@@ -14,15 +17,23 @@ std::string number(double v) {
 }
 std::string number(const std::optional<double>& v) { return v ? number(*v) : ""; }
 
-const std::vector<std::string> kKeyColumns = {"table", "scene", "backend", "mode", "max_depth", "width", "height",
-                                              "hash_cell", "octree_depth", "octree_min_objects", "mesh_cell", "hit"};
+// Everything configuration_fields() fills: what was asked for, not what happened (frames, the
+// timed frames actually run, and device, the device found, are left out; requested_frames and
+// requested_device are in).
+const std::vector<std::string> kKeyColumns = {
+    "table", "scene", "backend", "mode", "max_depth", "width", "height", "hash_cell", "octree_depth",
+    "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent", "hit", "max_steps", "hit_epsilon",
+    "hit_footprint", "requested_frames", "warmup", "budget_s", "check_size", "reference", "requested_device",
+    "whitted_passes", "validate", "threads"};
 
 }  // namespace
 
 const std::vector<std::string>& measurement_columns() {
   static const std::vector<std::string> columns = {
       "run_index", "table", "scene", "mesh", "triangles", "objects", "backend", "mode", "max_depth", "width", "height",
-      "hash_cell", "octree_depth", "octree_min_objects", "mesh_cell", "hit", "frames", "clock", "ms_median", "ms_min", "ms_max",
+      "hash_cell", "octree_depth", "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent", "hit",
+      "max_steps", "hit_epsilon", "hit_footprint", "requested_frames", "warmup", "budget_s", "reference",
+      "requested_device", "whitted_passes", "validate", "frames", "clock", "ms_median", "ms_min", "ms_max",
       "ms_wall_median", "fps", "mrays_per_s", "rays_per_pixel", "steps_per_ray", "instance_evals_per_ray",
       "triangle_evals_per_ray", "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray", "prepare_ms", "build_ms", "structure_bytes", "check_size", "hit_agreement",
       "id_agreement", "psnr", "agreement", "budget_cut", "device", "driver", "cpu", "threads", "commit"};
@@ -32,8 +43,10 @@ const std::vector<std::string>& measurement_columns() {
 std::vector<std::string> to_csv_fields(const Measurement& m) {
   return {std::to_string(m.run_index), m.table, m.scene, m.mesh, std::to_string(m.triangles), std::to_string(m.objects),
           m.backend, m.mode, std::to_string(m.max_depth), std::to_string(m.width), std::to_string(m.height),
-          number(m.hash_cell), number(m.octree_depth), number(m.octree_min_objects), number(m.mesh_cell),
-          m.hit, std::to_string(m.frames), m.clock, number(m.ms_median), number(m.ms_min), number(m.ms_max),
+          number(m.hash_cell), number(m.octree_depth), number(m.octree_min_objects), number(m.octree_min_size), m.lists,
+          number(m.mesh_cell), number(m.cells_per_extent), m.hit, number(m.max_steps), number(m.hit_epsilon),
+          number(m.hit_footprint), std::to_string(m.requested_frames), std::to_string(m.warmup), number(m.budget_s),
+          m.reference, m.requested_device, m.whitted_passes, m.validate ? "1" : "0", std::to_string(m.frames), m.clock, number(m.ms_median), number(m.ms_min), number(m.ms_max),
           number(m.ms_wall_median), number(m.fps), number(m.mrays_per_s), number(m.rays_per_pixel),
           number(m.steps_per_ray), number(m.instance_evals_per_ray), number(m.triangle_evals_per_ray),
           number(m.aabb_tests_per_ray), number(m.triangle_tests_per_ray), number(m.out_of_steps_per_ray),
@@ -51,5 +64,17 @@ std::string configuration_key(const std::vector<std::string>& fields, const std:
 }
 
 std::string configuration_key(const Measurement& m) { return configuration_key(to_csv_fields(m), measurement_columns()); }
+
+const std::vector<std::string>& configuration_key_columns() { return kKeyColumns; }
+
+size_t row_run_index(const CsvTable& table, size_t row, const std::string& source) {
+  const std::string& text = table.rows.at(row)[table.column("run_index")];
+  size_t index = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), index);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size())
+    throw Error("'" + source + "' row " + std::to_string(row + 1) + ": run_index '" + text +
+                "' is not a non-negative integer");
+  return index;
+}
 
 }  // namespace sdfbench

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "harness/csv.h"
+
 namespace sdfbench {
 
 struct Measurement {
@@ -16,10 +18,19 @@ struct Measurement {
   std::string backend, mode;
   unsigned max_depth = 0;
   unsigned width = 0, height = 0;
-  std::optional<double> hash_cell, octree_depth, octree_min_objects, mesh_cell;  // SDF backends only
-  std::string hit;  // SDF backends: "exact" or "thesis" (--hit)
+  // SDF backends only (empty for the others): structure and sphere-tracing parameters
+  std::optional<double> hash_cell, octree_depth, octree_min_objects, octree_min_size, mesh_cell;
+  std::optional<double> cells_per_extent;  // when mesh_cell is 0 (derived from it)
+  std::string lists;                        // "exact" or "thesis" (--lists)
+  std::string hit;                          // "exact" or "thesis" (--hit)
+  std::optional<double> max_steps, hit_epsilon, hit_footprint;
+  // the run's methodology, as requested (--frames, --warmup, --budget-s, --reference, --device, ...)
+  unsigned requested_frames = 0, warmup = 0;
+  double budget_s = 0;
+  std::string reference, requested_device, whitted_passes;  // whitted_passes: "auto", "on" or "off"
+  bool validate = false;
   // timing
-  unsigned frames = 0;
+  unsigned frames = 0;  // timed frames actually run (fewer than requested_frames when the budget cut them)
   std::string clock;  // "device" (GPU timestamps) or "wall"
   double ms_median = 0, ms_min = 0, ms_max = 0, ms_wall_median = 0, fps = 0, mrays_per_s = 0, rays_per_pixel = 0;
   // work counters of the instrumented check frame, per ray; empty: the backend has no such counter
@@ -41,9 +52,15 @@ struct Measurement {
 const std::vector<std::string>& measurement_columns();
 std::vector<std::string> to_csv_fields(const Measurement& m);
 
-// The columns that identify a configuration (everything a rerun must match): resume skips
-// rows whose key is already in the file, merge refuses two files with the same key.
+// The columns that identify a configuration: every parameter that changes a measurement, so a
+// rerun with other settings is another configuration. Resume skips rows whose key is already in
+// the file (and refuses rows of another run), merge refuses two files with the same key.
+const std::vector<std::string>& configuration_key_columns();
 std::string configuration_key(const std::vector<std::string>& fields, const std::vector<std::string>& columns);
 std::string configuration_key(const Measurement& m);
+
+// Row `row` (0-based) of `table`'s run_index; throws Error naming `source`, the row and the
+// column when it is not a non-negative integer.
+size_t row_run_index(const CsvTable& table, size_t row, const std::string& source);
 
 }  // namespace sdfbench

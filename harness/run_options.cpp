@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "harness/cli_common.h"
 #include "harness/markdown_report.h"
 #include "harness/thesis_tables.h"
 #include "util/atomic_file.h"
@@ -18,7 +19,7 @@ void add_run_options(CLI::App& command, RunOptions& o) {
       ->capture_default_str()->check(CLI::Range(0u, 1000u))->group(method);
   command.add_option("--budget-s", o.settings.budget_s,
                      "time budget per configuration (s): no further frame starts once it would be exceeded; the row says so")
-      ->capture_default_str()->check(CLI::PositiveNumber)->group(method);
+      ->capture_default_str()->check(number_in(0.0, 1e7, true))->group(method);
   command.add_option("--check-size", o.check_size, "resolution of the image-agreement check against the reference")
       ->capture_default_str()->group(method);
   command.add_option("--reference", o.settings.reference, "backend every row's images are compared with")

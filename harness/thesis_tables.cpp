@@ -1,12 +1,12 @@
 #include "harness/thesis_tables.h"
 
 #include <charconv>
-#include <fstream>
 #include <sstream>
 
 #include "harness/csv.h"
 #include "scenes/error.h"
 #include "scenes/mesh.h"
+#include "util/input_file.h"
 
 namespace sdfbench {
 namespace {
@@ -42,8 +42,7 @@ const ThesisTableConfig* find_thesis_table(const std::string& id) {
 }
 
 ThesisTables ThesisTables::load(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw Error("cannot read the thesis tables '" + path.string() + "'");
+  std::istringstream in(read_input_file(path, "thesis tables", 1 << 20));  // the committed one is ~2 KB
   std::string line, text;
   while (std::getline(in, line))
     if (line.rfind('#', 0) != 0) text += line + '\n';

@@ -1,14 +1,43 @@
 #include "renderers/frame_params.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "renderers/implicit_tables.h"
 
 namespace sdfbench {
+namespace {
 
+constexpr float kMaxRayDistanceScales = 100.0f;  // the max ray distance is this x the scene scale
+
+double box_distance(const Aabb& box, const glm::vec3& p) {
+  const glm::dvec3 d = glm::max(glm::max(glm::dvec3(box.min) - glm::dvec3(p), glm::dvec3(p) - glm::dvec3(box.max)), glm::dvec3(0.0));
+  return glm::length(d);
+}
+
+}  // namespace
+
+// The diagonal of the box around the camera and the objects, nearest first, stopping at the
+// first object beyond the max ray distance of what was gathered before it (100 x the larger of
+// that box's diagonal and the camera's distance to its look-at point). For a scene whose objects
+// lie together (every committed one) that is all of them with the camera, as before; an object
+// far away (translate 1e6) lies beyond every ray and no longer inflates the hit epsilons and the
+// max ray distance of the objects one sees.
 float scene_scale(const Scene& scene) {
-  Aabb bounds = scene.bounds();
-  bounds.extend(scene.camera.position);
+  std::vector<std::pair<double, Aabb>> objects;  // (distance from the camera, world box)
+  const glm::vec3 eye = scene.camera.position;
+  for (const Instance& instance : scene.instances) objects.emplace_back(0.0, scene.world_bounds(instance));
+  for (const ImplicitObject& object : scene.implicits) objects.emplace_back(0.0, scene.world_bounds(object));
+  for (auto& [distance, box] : objects) distance = box_distance(box, eye);
+  std::stable_sort(objects.begin(), objects.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  const double view = glm::length(glm::dvec3(scene.camera.look_at) - glm::dvec3(eye));
+  Aabb bounds;
+  bounds.extend(eye);
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const double reach = kMaxRayDistanceScales * std::max<double>(glm::length(bounds.extent()), view);
+    if (i > 0 && objects[i].first > reach) break;  // the nearest object always counts
+    bounds.extend(objects[i].second);
+  }
   return std::max(1e-3f, glm::length(bounds.extent()));
 }
 
@@ -33,7 +62,7 @@ ShadingInputs make_shading_inputs(const Scene& scene, const FrameRequest& reques
   f.floor = vec4(scene.floor.height, static_cast<float>(scene.floor.material), scene.floor.enabled ? 1.0f : 0.0f, 0.0f);
   // Implicit objects' hit epsilon (w): the SDF backends' thesis hit epsilon, 5e-6 x the scene
   // scale. Rays leave surfaces by offset_origin() in shading.glsl, which follows the hit.
-  f.tracing = vec4(0.0f, scene.ambient, 100.0f * scale, 5e-6f * scale);
+  f.tracing = vec4(0.0f, scene.ambient, kMaxRayDistanceScales * scale, 5e-6f * scale);
   f.image = glm::uvec4(request.width, request.height, static_cast<uint32_t>(request.mode),
                        static_cast<uint32_t>(scene.lights.size()));
   ImplicitTables implicits = make_implicit_tables(scene);

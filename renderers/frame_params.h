@@ -18,7 +18,10 @@ struct ShadingInputs {
 
 ShadingInputs make_shading_inputs(const Scene& scene, const FrameRequest& request);
 
-// Scale of the scene (instances, implicit objects, camera), used to size the ray offset epsilon and tmax.
+// Scale of the scene as the camera sees it: the diagonal of the box around the camera and the
+// objects within reach of its rays (a far outlier does not count; details in the .cpp). The one
+// place scale-derived limits come from: the max ray distance (100 x), the implicit objects' and
+// --hit thesis's hit epsilons.
 float scene_scale(const Scene& scene);
 
 }  // namespace sdfbench

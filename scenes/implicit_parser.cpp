@@ -8,10 +8,16 @@ namespace sdfbench {
 namespace {
 
 constexpr const char* kTypes = "sphere, box, ellipsoid, capsule, torus, plane, union, intersection or subtraction";
+// Every operation has at least 2 children, so a tree of kImplicitMaxNodes nodes nests at most
+// this deep: deeper JSON is refused before recursing into it (bounded stack and memory).
+constexpr uint32_t kMaxNesting = kImplicitMaxNodes / 2;
 
 // Appends the node's subtree in postfix order. n-ary operations fold left: (((c0 c1 op) c2 op) ...),
 // so subtraction takes every later child away from the first.
-void flatten(const JsonField& f, std::vector<ImplicitNode>& out) {
+void flatten(const JsonField& f, uint32_t nesting, std::vector<ImplicitNode>& out) {
+  if (nesting > kMaxNesting)
+    f.fail("operations nested more than " + std::to_string(kMaxNesting) + " deep (an implicit shape holds at most " +
+           std::to_string(kImplicitMaxNodes) + " nodes)");
   if (out.size() >= kImplicitMaxNodes)
     f.fail("too many nodes: an implicit shape holds at most " + std::to_string(kImplicitMaxNodes));
   if (!f.raw().is_object()) f.fail(std::string("expected a shape object with a \"type\", got ") + f.raw().type_name());
@@ -24,9 +30,9 @@ void flatten(const JsonField& f, std::vector<ImplicitNode>& out) {
     if (children.size() < 2) children.fail("an operation needs at least 2 children");
     n.kind = type == "union" ? ImplicitKind::Union
                              : (type == "intersection" ? ImplicitKind::Intersection : ImplicitKind::Subtraction);
-    flatten(children.item(0), out);
+    flatten(children.item(0), nesting + 1, out);
     for (size_t i = 1; i < children.size(); ++i) {
-      flatten(children.item(i), out);
+      flatten(children.item(i), nesting + 1, out);
       if (out.size() >= kImplicitMaxNodes)
         f.fail("too many nodes: an implicit shape holds at most " + std::to_string(kImplicitMaxNodes));
       out.push_back(n);
@@ -77,7 +83,7 @@ void flatten(const JsonField& f, std::vector<ImplicitNode>& out) {
 
 std::vector<ImplicitNode> parse_implicit_shape(const JsonField& shape) {
   std::vector<ImplicitNode> nodes;
-  flatten(shape, nodes);
+  flatten(shape, 0, nodes);
   try {
     implicit_bounds(nodes);  // stack depth, boundedness
   } catch (const Error& e) {

@@ -1,13 +1,32 @@
 #include "scenes/json_field.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "scenes/error.h"
 
 namespace sdfbench {
+namespace {
+
+// A path deeper than a message line should carry (a hostile file nests thousands of levels):
+// its start and end, which say where, and how much was left out.
+std::string short_path(const std::string& path) {
+  constexpr size_t kKeep = 60;
+  if (path.size() <= 2 * kKeep + 40) return path;
+  return path.substr(0, kKeep) + "...(" + std::to_string(path.size() - 2 * kKeep) + " characters)..." +
+         path.substr(path.size() - kKeep);
+}
+
+std::string format_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
+}  // namespace
 
 void JsonField::fail(const std::string& what) const {
-  throw Error(file_ + ": " + (path_.empty() ? std::string("(top level)") : path_) + ": " + what);
+  throw Error(file_ + ": " + (path_.empty() ? std::string("(top level)") : short_path(path_)) + ": " + what);
 }
 
 JsonField JsonField::at(const char* key) const {
@@ -46,28 +65,30 @@ void JsonField::expect_array() const {
 float JsonField::number() const {
   if (!value_.is_number()) fail(std::string("expected a number, got ") + value_.type_name());
   const double v = value_.get<double>();
-  if (!std::isfinite(v) || std::abs(v) > 1e30) fail("number out of range");
+  if (!std::isfinite(v) || std::abs(v) > 1e30) fail("number out of range (magnitude at most 1e30), got " + format_number(v));
   return static_cast<float>(v);
 }
 
 float JsonField::number_in(float lo, float hi) const {
   const float v = number();
-  if (v < lo || v > hi) fail("must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
+  if (v < lo || v > hi) fail("must be in [" + format_number(lo) + ", " + format_number(hi) + "], got " + format_number(v));
   return v;
 }
 
 float JsonField::positive() const {
   const float v = number();
-  if (!(v > 0.0f)) fail("must be > 0, got " + std::to_string(v));
+  if (!(v > 0.0f)) fail("must be > 0, got " + format_number(v));
   return v;
 }
 
 uint32_t JsonField::integer_in(uint32_t lo, uint32_t hi) const {
   if (!value_.is_number_integer()) fail(std::string("expected an integer, got ") + value_.type_name());
-  const long long v = value_.get<long long>();
-  if (v < static_cast<long long>(lo) || v > static_cast<long long>(hi))
-    fail("must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
-  return static_cast<uint32_t>(v);
+  // Unsigned and signed JSON integers are read as what they are (18446744073709551615 is not -1).
+  const bool in_range = value_.is_number_unsigned() ? value_.get<uint64_t>() >= lo && value_.get<uint64_t>() <= hi
+                                                    : value_.get<int64_t>() >= lo && value_.get<int64_t>() <= hi;
+  if (!in_range)
+    fail("must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + value_.dump());
+  return value_.get<uint32_t>();
 }
 
 std::string JsonField::string() const {

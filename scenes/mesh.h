@@ -24,9 +24,13 @@ struct Mesh {
 // Fills normals (angle-weighted vertex normals) and bounds from positions and triangles.
 void finish_mesh(Mesh& mesh);
 
-// Reads a Wavefront OBJ (polygons are triangulated). Throws Error naming the file and the
-// problem for unreadable files, out-of-range indices, non-finite coordinates or empty meshes.
+// Reads a Wavefront OBJ (polygons are triangulated). Throws Error naming the file, the line and
+// the problem for unreadable or special files, coordinates that are not finite numbers,
+// out-of-range indices, more than 8 Mi vertices or triangles, or empty meshes.
 Mesh load_obj(const std::filesystem::path& path, const std::string& name);
+
+// Same, from OBJ text already in memory (the fuzz target); `source` names it in errors.
+Mesh parse_obj(const std::string& text, const std::filesystem::path& source, const std::string& name);
 
 // The directory holding scenes/ (meshes, descriptors): $SDFBENCH_DATA_DIR or the source tree.
 std::filesystem::path data_dir();

@@ -1,20 +1,22 @@
 #include "scenes/scene_loader.h"
 
-#include <fstream>
+#include <algorithm>
 #include <map>
-#include <sstream>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <glm/gtc/quaternion.hpp>
 
 #include "scenes/error.h"
 #include "scenes/implicit_parser.h"
 #include "scenes/json_field.h"
+#include "util/input_file.h"
 
 namespace sdfbench {
 namespace {
 
 constexpr uint32_t kMaxImageSide = 16384;
+constexpr uint64_t kMaxSceneFileBytes = 32ull << 20;  // a scene of 100 000 instances is ~10 MB
 
 // Looks up a name declared in a section ("meshes", "materials") and says what exists if not.
 uint32_t lookup(const JsonField& field, const std::map<std::string, uint32_t>& names, const char* section) {
@@ -26,24 +28,47 @@ uint32_t lookup(const JsonField& field, const std::map<std::string, uint32_t>& n
   field.fail("unknown " + std::string(section) + " '" + name + "' (declared: " + (known.empty() ? "none" : known) + ")");
 }
 
+// Texels become linear RGBA floats, all of a scene's in one GPU texel buffer: 16 Mi of them
+// (4096 x 4096, 256 MiB) stay far inside lavapipe's 128 Mi-element texel buffers and memory. The
+// header's width x height is checked against it before any pixel is decoded (a 296 KB PNG can
+// declare 16384 x 16384).
+constexpr uint64_t kMaxSceneTexels = 1ull << 24;
+constexpr uint64_t kMaxImageFileBytes = 256ull << 20;
+
 // Decodes an image into Scene::texels as linear RGBA: integer formats are display-encoded, so
 // gamma 2.2 is undone (the inverse of the image encoding); float formats are taken as linear.
-// Grey images fill rgb; alpha is ignored.
+// Grey images fill rgb; alpha is ignored. OpenImageIO reads the bytes from memory: the file
+// itself was opened by read_input_bytes (a FIFO or /dev/zero is refused, not read for ever).
 Texture load_texture(const JsonField& field, const std::filesystem::path& path, Scene& scene) {
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) field.fail("cannot read image '" + path.string() + "': " + OIIO::geterror());
+  const std::string name = "image '" + path.string() + "'";
+  std::vector<std::byte> bytes;
+  try {
+    bytes = read_input_bytes(path, "image", kMaxImageFileBytes);
+  } catch (const Error& e) {
+    field.fail(e.what());
+  }
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  auto in = OIIO::ImageInput::open(path.string(), nullptr, &memory);
+  if (!in) field.fail("cannot read " + name + ": " + OIIO::geterror());
   const OIIO::ImageSpec spec = in->spec();
-  if (spec.width < 1 || spec.height < 1 || spec.width > 16384 || spec.height > 16384 || spec.depth > 1)
-    field.fail("image '" + path.string() + "' must be 2D with sides between 1 and 16384");
-  const int channels = spec.nchannels;
-  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * channels);
+  if (spec.width < 1 || spec.height < 1 || spec.width > 16384 || spec.height > 16384 || spec.depth != 1 ||
+      spec.nchannels < 1)
+    field.fail(name + " must be 2D with sides between 1 and 16384 and at least one channel");
+  const uint64_t texels = uint64_t(spec.width) * uint64_t(spec.height);
+  if (scene.texels.size() + texels > kMaxSceneTexels)
+    field.fail(name + " is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " texels" +
+               (scene.texels.empty() ? "" : " (plus " + std::to_string(scene.texels.size()) + " in other textures)") +
+               ", more than the " + std::to_string(kMaxSceneTexels) + " texels a scene may hold (4096x4096, " +
+               describe_bytes(kMaxSceneTexels * sizeof(glm::vec4)) + " as RGBA floats)");
+  const int channels = std::min(spec.nchannels, 3);  // rgb or grey: alpha and extra channels are not read
+  std::vector<float> pixels(texels * channels);
   if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-    field.fail("cannot read image '" + path.string() + "': " + in->geterror());
+    field.fail("cannot read " + name + ": " + in->geterror());
   const bool linear = spec.format.is_floating_point();
   Texture texture{path, static_cast<uint32_t>(scene.texels.size()), static_cast<uint32_t>(spec.width),
                   static_cast<uint32_t>(spec.height)};
   for (size_t i = 0; i < pixels.size(); i += channels) {
-    glm::vec3 rgb = channels > 2 ? glm::vec3(pixels[i], pixels[i + 1], pixels[i + 2]) : glm::vec3(pixels[i]);
+    glm::vec3 rgb = channels == 3 ? glm::vec3(pixels[i], pixels[i + 1], pixels[i + 2]) : glm::vec3(pixels[i]);
     if (!linear) rgb = glm::pow(glm::max(rgb, 0.0f), glm::vec3(2.2f));
     scene.texels.emplace_back(rgb, 1.0f);
   }
@@ -115,21 +140,43 @@ Camera parse_camera(const JsonField& f) {
   if (f.has("fov_y")) c.fov_y_degrees = f.at("fov_y").number_in(1.0f, 179.0f);
   const glm::vec3 forward = c.look_at - c.position;
   if (glm::length(forward) < 1e-9f) f.at("look_at").fail("camera look_at equals its position");
-  if (glm::length(c.up) < 1e-12f || glm::length(glm::cross(forward, c.up)) < 1e-6f * glm::length(forward) * glm::length(c.up))
+  if (glm::length(c.up) < 1e-12f || glm::length(glm::cross(forward, c.up)) < 1e-6f * glm::length(forward) * glm::length(c.up)) {
+    if (!f.has("up"))  // the default up (0, 1, 0): say what to give, not that a field is missing
+      f.fail("the view from position to look_at is vertical, parallel to the default up [0, 1, 0]; give camera.up");
     f.at("up").fail("camera up is zero or parallel to the viewing direction");
+  }
   return c;
 }
 
-}  // namespace
+// nlohmann's messages start with "[json.exception.parse_error.101] ": the rest is for users.
+std::string json_message(const nlohmann::ordered_json::exception& e) {
+  const std::string what = e.what();
+  const size_t end = what.find("] ");
+  return what.rfind("[json.exception.", 0) == 0 && end != std::string::npos ? what.substr(end + 2) : what;
+}
 
-Scene parse_scene_json(const std::string& text, const std::filesystem::path& origin) {
-  const std::string file = origin.string();
-  nlohmann::ordered_json doc;  // declaration order: the first material is the default
-  try {
-    doc = nlohmann::ordered_json::parse(text);
-  } catch (const nlohmann::ordered_json::parse_error& e) {
-    throw Error(file + ": malformed JSON: " + e.what());
+// nlohmann's DOM parser, turning every parse failure into an Error with the file and position:
+// a syntax error's message has its line and column, a number overflow (1e400) only its text.
+struct DomParser : nlohmann::detail::json_sax_dom_parser<nlohmann::ordered_json> {
+  DomParser(nlohmann::ordered_json& doc, const std::string& text, const std::string& file)
+      : json_sax_dom_parser(doc), text(text), file(file) {}
+  template <class Exception>
+  [[noreturn]] bool parse_error(size_t position, const std::string& token, const Exception& e) {
+    if (e.id / 100 == 1) throw Error(file + ": malformed JSON: " + json_message(e));  // parse_error.1xx
+    // `position` is just past the token: report where it starts (line and column from 1).
+    const size_t start = std::min(text.size(), position - std::min(position, token.size()));
+    const size_t line_start = text.rfind('\n', start == 0 ? 0 : start - 1);
+    const size_t column = line_start == std::string::npos ? start + 1 : start - line_start;
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(start), '\n');
+    throw Error(file + ": malformed JSON at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " +
+                json_message(e));
   }
+  const std::string& text;
+  const std::string& file;
+};
+
+Scene build_scene(const nlohmann::ordered_json& doc, const std::filesystem::path& origin) {
+  const std::string file = origin.string();
   const JsonField root(doc, "", file);
   root.expect_object(
       {"meshes", "materials", "instances", "implicits", "lights", "camera", "sky", "floor", "ambient", "render"});
@@ -235,15 +282,22 @@ Scene parse_scene_json(const std::string& text, const std::filesystem::path& ori
   return scene;
 }
 
+}  // namespace
+
+Scene parse_scene_json(const std::string& text, const std::filesystem::path& origin) {
+  const std::string file = origin.string();
+  try {
+    nlohmann::ordered_json doc;  // declaration order: the first material is the default
+    DomParser parser(doc, text, file);
+    nlohmann::ordered_json::sax_parse(text, &parser);
+    return build_scene(doc, origin);
+  } catch (const nlohmann::ordered_json::exception& e) {  // a check JsonField does not make yet
+    throw Error(file + ": " + json_message(e));
+  }
+}
+
 Scene load_scene_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw Error(path.string() + ": scene file does not exist or is not a file");
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  if (!in) throw Error(path.string() + ": cannot read scene file");
-  return parse_scene_json(text.str(), path);
+  return parse_scene_json(read_input_file(path, "scene file", kMaxSceneFileBytes), path);
 }
 
 }  // namespace sdfbench

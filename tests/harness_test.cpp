@@ -69,7 +69,9 @@ TEST(Csv, WriteReadRoundTripThroughAFile) {
 TEST(MeasurementColumns, MatchTheDocumentedListAndFieldCount) {
   const std::vector<std::string>& c = measurement_columns();
   for (const char* required : {"scene", "mesh", "triangles", "objects", "backend", "mode", "width", "height", "hash_cell",
-                               "octree_depth", "octree_min_objects", "mesh_cell", "hit", "frames", "ms_median", "ms_min", "ms_max",
+                               "octree_depth", "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent",
+                               "hit", "max_steps", "hit_epsilon", "hit_footprint", "requested_frames", "warmup", "budget_s",
+                               "reference", "requested_device", "whitted_passes", "validate", "frames", "ms_median", "ms_min", "ms_max",
                                "fps", "mrays_per_s", "steps_per_ray", "instance_evals_per_ray", "triangle_evals_per_ray",
                                "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray",
                                "build_ms", "structure_bytes", "hit_agreement", "id_agreement", "psnr", "budget_cut",
@@ -224,6 +226,8 @@ TEST(SweepCommand, KilledRunLeavesAValidCsvThatResumeCompletes) {
   const CsvTable done = read_csv(csv);
   EXPECT_EQ(done.rows.size(), 4u);
   EXPECT_EQ(configuration_keys(done).size(), 4u);
+  // Only the CSV: the killed run's writes left no temporary file, and the lock is gone.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), {}), 1);
   if (rows_before < 4) {
     EXPECT_NE(resumed.output.find("already in"), std::string::npos) << resumed.output;
   }

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -12,6 +14,8 @@
 #include <tbb/parallel_for.h>
 
 #include "scenes/error.h"
+#include "util/input_file.h"
+#include "util/progress.h"
 
 // Why the lists are exact.
 //
@@ -391,9 +395,12 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
   for (int a = 0; a < 3; ++a) {
     const double n = std::ceil(static_cast<double>(extent[a]) / grid.cell_size + 2.0 * params.margin_cells - 1e-6);
     cells *= std::max(n, 1.0);
-    if (cells > static_cast<double>(kMaxCells))
-      throw Error("mesh '" + mesh.name + "': a grid of cell size " + std::to_string(grid.cell_size) +
-                  " needs more than 2^26 cells; use a larger cell size or fewer cells per extent");
+    if (cells > static_cast<double>(kMaxCells)) {
+      char size[32];
+      std::snprintf(size, sizeof size, "%.4g", grid.cell_size);
+      throw Error("mesh '" + mesh.name + "': a grid of cell size " + size + " needs more than 2^26 cells (" +
+                  std::to_string(kMaxCells) + "); use a larger --mesh-cell or fewer --cells-per-extent");
+    }
     grid.dims[a] = static_cast<uint32_t>(std::max(n, 1.0));
   }
   // Centred on the mesh: the slack of the rounded-up dims is split evenly.
@@ -413,6 +420,10 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
 
   const uint32_t rows = grid.dims.y * grid.dims.z;
   std::vector<std::vector<uint32_t>> row_counts(rows), row_lists(rows);
+  // The lists' memory as they grow, against the cap (checked per row, before the next one).
+  std::atomic<uint64_t> list_bytes{grid.cell_count() * sizeof(uint32_t)};
+  ProgressMeter progress("mesh grid '" + mesh.name + "' (" + std::to_string(mesh.triangles.size()) + " triangles)", rows,
+                         "rows of cells");
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, rows), [&](const tbb::blocked_range<uint32_t>& range) {
     for (uint32_t row = range.begin(); row < range.end(); ++row) {
       const uint32_t y = row % grid.dims.y, z = row / grid.dims.y;
@@ -441,6 +452,12 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
         list_cell(bvh, mesh, boxes, grid.face_normals, q, list);
         counts[x] = static_cast<uint32_t>(list.size() - before);
       }
+      const uint64_t bytes = list_bytes.fetch_add(list.size() * sizeof(uint32_t)) + list.size() * sizeof(uint32_t);
+      if (bytes > params.max_bytes)
+        throw Error("mesh '" + mesh.name + "': the grid's cell lists need more than " + describe_bytes(params.max_bytes) +
+                    " (--max-structure-mb " + std::to_string(params.max_bytes >> 20) +
+                    "); use a larger --mesh-cell, fewer --cells-per-extent, or raise --max-structure-mb");
+      progress.advance(1, [&] { return describe_bytes(list_bytes.load()) + " of lists"; });
     }
   });
 

@@ -34,12 +34,19 @@ enum class MeshGridRule {
   sphere,  // dist(T, centre) <= d_c + 2h only: DESIGN.md's cheap rule, kept for comparison
 };
 
+// Default memory cap of one SDF structure (a mesh grid's cell lists, the scene hash's octrees):
+// --max-structure-mb. The Vulkan backends' 31-bit words and the 4 GiB cache sit beyond it.
+inline constexpr uint64_t kDefaultMaxStructureBytes = uint64_t(2048) << 20;
+
 struct MeshGridParams {
   float cell_size = 0.0f;          // > 0: explicit cell size (mesh units); 0: derived from cells_per_extent
   uint32_t cells_per_extent = 32;  // cells along the mesh's largest bounding-box extent
   float margin_cells = 1.0f;       // grid box = mesh bounds grown by this many cells on every side
   MeshGridRule rule = MeshGridRule::tight;
   uint32_t subdivision = 2;        // tight rule: also test each cell's S^3 sub-boxes (1..8; exact for any S)
+  // --max-structure-mb: the build stops with an Error once the cell lists pass this. Not a
+  // parameter of the result (caches and result keys leave it out).
+  uint64_t max_bytes = kDefaultMaxStructureBytes;
 };
 
 // DESIGN.md's exact grid: each cell lists every triangle that can be the closest one to some point of the cell.
@@ -61,7 +68,8 @@ struct MeshDistanceGrid {
 };
 
 // Throws Error for unusable parameters (non-positive or non-finite cell size, zero cells per
-// extent, negative margin, subdivision outside 1..8) or a grid over 2^26 cells / 2^32 list entries.
+// extent, negative margin, subdivision outside 1..8), a grid over 2^26 cells, or lists passing
+// params.max_bytes (checked as they grow). Prints progress on stderr when the build is long.
 MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams& params);
 
 // Unsigned distance: inside the grid box the min over the cell's listed triangles (exact);

@@ -1,8 +1,10 @@
 #include "renderers/sdf/scene_hash.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <functional>
 #include <numeric>
@@ -10,6 +12,8 @@
 #include <tbb/parallel_invoke.h>
 
 #include "scenes/error.h"
+#include "util/input_file.h"
+#include "util/progress.h"
 
 namespace sdfbench::sdf {
 namespace {
@@ -167,21 +171,49 @@ Aabb octant(const Aabb& box, int k) {
   return child;
 }
 
-void build_octree(const RegionLister& lister, const SceneHashParams& p, const Aabb& box, std::vector<uint32_t> list,
+std::string short_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
+
+// What every cell's octree build shares: the memory the octrees hold so far, against the cap
+// (a deep octree with a tiny --octree-min-size grows without end), and the progress line.
+struct OctreeBudget {
+  const SceneHashParams& params;
+  ProgressMeter& progress;
+  std::atomic<uint64_t> bytes{0};
+
+  void spend(uint64_t more) {
+    const uint64_t total = bytes.fetch_add(more, std::memory_order_relaxed) + more;
+    if (total > params.max_bytes)
+      throw Error("the scene hash's octrees need more than " + describe_bytes(params.max_bytes) +
+                  " (--max-structure-mb " + std::to_string(params.max_bytes >> 20) + ") at --octree-depth " +
+                  std::to_string(params.octree_depth) + " --octree-min-size " + short_number(params.octree_min_size) +
+                  "; lower --octree-depth, raise --octree-min-size, --octree-min-objects or --hash-cell, or raise --max-structure-mb");
+    if ((total >> 24) != ((total - more) >> 24))  // every 16 MiB: a line when one cell takes long
+      progress.advance(0, [&] { return describe_bytes(total) + " of octrees"; });
+  }
+};
+
+void build_octree(const RegionLister& lister, OctreeBudget& budget, const Aabb& box, std::vector<uint32_t> list,
                   uint32_t depth, uint32_t node, CellTree& tree) {
+  const SceneHashParams& p = budget.params;
   const float size = box.extent().x;  // cells are cubes
   const bool leaf = depth >= p.octree_depth || list.size() <= p.octree_min_objects || size <= p.octree_min_size;
   if (leaf) {
+    budget.spend(list.size() * sizeof(uint32_t));
     tree.nodes[node] = {-1, static_cast<uint32_t>(tree.lists.size()), static_cast<uint32_t>(list.size()), depth};
     tree.lists.insert(tree.lists.end(), list.begin(), list.end());
     return;
   }
+  budget.spend(8 * sizeof(OctreeNode));
   const uint32_t first = static_cast<uint32_t>(tree.nodes.size());
   tree.nodes[node] = {static_cast<int32_t>(first), 0, 0, depth};
   tree.nodes.resize(first + 8);
   for (int k = 0; k < 8; ++k) {
     const Aabb child = octant(box, k);
-    build_octree(lister, p, child, lister.list(child, list), depth + 1, first + k, tree);
+    build_octree(lister, budget, child, lister.list(child, list), depth + 1, first + k, tree);
   }
 }
 
@@ -197,22 +229,38 @@ void validate(const SceneHashParams& p) {
   if (p.octree_depth > 16) throw Error("--octree-depth must be at most 16");
 }
 
-SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGrid>& grids, const SceneHashParams& params) {
+namespace {
+
+Aabb hash_bounds(const Scene& scene) {
+  const Aabb bounds = scene.instance_bounds();
+  return bounds.empty() ? Aabb{glm::vec3(0.0f), glm::vec3(0.0f)} : bounds;  // implicit objects only: one empty cell
+}
+
+}  // namespace
+
+glm::uvec3 scene_hash_dims(const Scene& scene, const SceneHashParams& params) {
   validate(params);
+  const glm::vec3 extent = hash_bounds(scene).extent();
+  // In double: a far instance (1e29) or a tiny cell gives counts far beyond any integer type.
+  const glm::dvec3 cells = glm::max(glm::ceil(glm::dvec3(extent) / static_cast<double>(params.hash_cell)), glm::dvec3(1.0));
+  const double total = cells.x * cells.y * cells.z;
+  if (!(total <= static_cast<double>(kMaxHashCells)))
+    throw Error("--hash-cell " + short_number(params.hash_cell) + " gives " + short_number(cells.x) + " x " +
+                short_number(cells.y) + " x " + short_number(cells.z) + " = " + short_number(total) +
+                " cells over the instances' bounds (" + short_number(extent.x) + " x " + short_number(extent.y) + " x " +
+                short_number(extent.z) + "), more than the limit of " + std::to_string(kMaxHashCells) +
+                "; use a larger --hash-cell or keep the instances closer together");
+  return glm::uvec3(cells);
+}
+
+SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGrid>& grids, const SceneHashParams& params) {
   const auto start = std::chrono::steady_clock::now();
   SceneHash hash;
   hash.params = params;
   hash.cell_size = params.hash_cell;
-  Aabb bounds = scene.instance_bounds();
-  if (bounds.empty()) bounds = Aabb{glm::vec3(0.0f), glm::vec3(0.0f)};  // implicit objects only: one empty cell
+  hash.dims = scene_hash_dims(scene, params);
+  const Aabb bounds = hash_bounds(scene);
   const glm::vec3 extent = bounds.extent();
-  const glm::dvec3 cells = glm::max(glm::ceil(glm::dvec3(extent) / static_cast<double>(params.hash_cell)), glm::dvec3(1.0));
-  const double total = cells.x * cells.y * cells.z;
-  constexpr double kMaxCells = 64.0 * 1024 * 1024;
-  if (total > kMaxCells)
-    throw Error("--hash-cell " + std::to_string(params.hash_cell) + " gives " + std::to_string(static_cast<uint64_t>(total)) +
-                " cells over the scene (more than " + std::to_string(static_cast<uint64_t>(kMaxCells)) + "); use a larger cell");
-  hash.dims = glm::uvec3(cells);
   // Centre the whole-cell grid on the scene bounds.
   hash.origin = bounds.center() - 0.5f * glm::vec3(hash.dims) * params.hash_cell;
 
@@ -224,6 +272,9 @@ SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGri
   // Blocks of cells, top-down: candidates shrink level by level. Leaves are single cells.
   const size_t cell_count = static_cast<size_t>(hash.dims.x) * hash.dims.y * hash.dims.z;
   std::vector<CellTree> trees(cell_count);
+  ProgressMeter progress("scene hash", cell_count, "cells");
+  OctreeBudget budget{params, progress};
+  budget.spend(cell_count * (sizeof(uint32_t) + sizeof(OctreeNode)));  // the cell table and the roots
   auto cell_box = [&](glm::uvec3 lo, glm::uvec3 hi) {
     return Aabb{hash.origin + glm::vec3(lo) * params.hash_cell, hash.origin + glm::vec3(hi) * params.hash_cell};
   };
@@ -234,7 +285,8 @@ SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGri
     if (size.x * size.y * size.z == 1) {
       CellTree& tree = trees[(static_cast<size_t>(lo.z) * hash.dims.y + lo.y) * hash.dims.x + lo.x];
       tree.nodes.resize(1);
-      build_octree(lister, params, cell_box(lo, hi), list, 0, 0, tree);
+      build_octree(lister, budget, cell_box(lo, hi), list, 0, 0, tree);
+      progress.advance(1, [&] { return describe_bytes(budget.bytes.load()) + " of octrees"; });
       return;
     }
     const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
@@ -245,10 +297,15 @@ SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGri
   };
   build_block(glm::uvec3(0), hash.dims, all);
 
-  // Flatten in cell order: deterministic whatever the thread schedule.
+  // Flatten in cell order: deterministic whatever the thread schedule. Each cell's tree is freed
+  // once copied, so the copy never doubles the memory.
+  size_t node_total = 0, list_total = 0;
+  for (const CellTree& tree : trees) node_total += tree.nodes.size(), list_total += tree.lists.size();
+  hash.nodes.reserve(node_total);
+  hash.instance_lists.reserve(list_total);
   hash.cell_root.resize(cell_count);
   for (size_t cell = 0; cell < cell_count; ++cell) {
-    const CellTree& tree = trees[cell];
+    CellTree tree = std::move(trees[cell]);
     const uint32_t node_base = static_cast<uint32_t>(hash.nodes.size());
     const uint32_t list_base = static_cast<uint32_t>(hash.instance_lists.size());
     hash.cell_root[cell] = node_base;
@@ -276,7 +333,7 @@ size_t bytes(const SceneSdf& sdf) {
 }
 
 SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params) {
-  validate(hash_params);
+  scene_hash_dims(scene, hash_params);  // an impossible hash is refused before the mesh grids are built
   SceneSdf sdf;
   for (const Mesh& mesh : scene.meshes) sdf.mesh_grids.push_back(build_mesh_distance_grid(mesh, mesh_params));
   sdf.hash = build_scene_hash(scene, sdf.mesh_grids, hash_params);

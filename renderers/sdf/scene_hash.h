@@ -12,6 +12,9 @@
 
 namespace sdfbench::sdf {
 
+// Scene hash cells at most (the cell table and the octree roots are per cell).
+inline constexpr uint64_t kMaxHashCells = uint64_t(1) << 26;
+
 enum class ListRule {
   Exact,   // DESIGN.md: every instance that can be the closest to some point of the region
   Thesis,  // the thesis' approximate Voronoi "influence AABB" (kept for comparison)
@@ -23,6 +26,9 @@ struct SceneHashParams {
   uint32_t octree_min_objects = 1;  // --octree-min-objects: a node with <= this many instances is a leaf
   float octree_min_size = 1.0f;     // --octree-min-size: a node this small (edge) is a leaf (thesis: 1)
   ListRule lists = ListRule::Exact;
+  // --max-structure-mb: the build stops with an Error once the octrees' nodes and lists pass
+  // this (a deep octree with a tiny min size grows without end). Not a parameter of the result.
+  uint64_t max_bytes = kDefaultMaxStructureBytes;
 };
 
 struct OctreeNode {
@@ -58,6 +64,11 @@ double build_ms(const SceneSdf& sdf);
 size_t bytes(const SceneSdf& sdf);
 
 void validate(const SceneHashParams& params);  // throws Error for non-positive sizes etc.
+// The hash grid's cells per axis over the scene's instances; throws Error (with the real counts)
+// beyond kMaxHashCells. Cheap: callers check it before the mesh grids are built.
+glm::uvec3 scene_hash_dims(const Scene& scene, const SceneHashParams& params);
+// Throws Error when the scene hash, or its octrees as they grow, would pass the limits above
+// (naming the flags to change); long builds print progress on stderr (util/progress.h).
 SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGrid>& grids, const SceneHashParams& params);
 SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params);
 

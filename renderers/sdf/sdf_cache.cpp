@@ -2,13 +2,13 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <ostream>
 #include <sstream>
 
 #include "renderers/sdf/sdf_cache_format.h"
 #include "scenes/error.h"
 #include "util/atomic_file.h"
+#include "util/input_file.h"
 
 namespace sdfbench::sdf {
 namespace {
@@ -28,18 +28,6 @@ uint64_t hash_items(uint64_t h, const std::vector<T>& items) {
 template <class T>
 uint64_t hash_value(uint64_t h, const T& value) {
   return fnv1a64(std::as_bytes(std::span(&value, 1)), h);
-}
-
-std::vector<std::byte> read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot open SDF cache '" + path.string() + "'");
-  std::error_code ec;
-  const uintmax_t size = fs::file_size(path, ec);
-  if (ec) throw Error("cannot read SDF cache '" + path.string() + "': " + ec.message());
-  std::vector<std::byte> bytes(size);
-  if (!in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
-    throw Error("cannot read SDF cache '" + path.string() + "'");
-  return bytes;
 }
 
 std::string describe(const MeshGridParams& m) {
@@ -98,12 +86,18 @@ void write_sdf_cache(const fs::path& path, const Scene& scene, const SceneSdf& s
     c.mesh_vertices.push_back(static_cast<uint32_t>(mesh.positions.size()));
   }
   c.hash = sdf.hash;
-  write_file_atomically(path, encode_sdf_cache(c));
+  const std::vector<std::byte> bytes = encode_sdf_cache(c);
+  if (bytes.size() > kMaxSdfCacheBytes)  // the loader would refuse it
+    throw Error("SDF cache '" + path.string() + "' would be " + describe_bytes(bytes.size()) + ", more than the limit for a cache (" +
+                describe_bytes(kMaxSdfCacheBytes) + "); not written (use a coarser --mesh-cell or --hash-cell)");
+  write_file_atomically(path, bytes);
 }
 
-SceneSdf load_sdf_cache(const fs::path& path, const Scene& scene, const MeshGridParams& mesh_params,
-                        const SceneHashParams& hash_params) {
-  const std::vector<std::byte> bytes = read_file(path);
+namespace {
+
+// The cache already read (and bounded), checked completely and against this scene.
+SceneSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, const Scene& scene,
+                        const MeshGridParams& mesh_params, const SceneHashParams& hash_params) {
   SdfCacheContents c = decode_sdf_cache(bytes, path.string());
   const std::string stale = "SDF cache '" + path.string() + "' is stale: ";
   if (c.scene_hash != scene_geometry_hash(scene))
@@ -124,15 +118,24 @@ SceneSdf load_sdf_cache(const fs::path& path, const Scene& scene, const MeshGrid
   return sdf;
 }
 
+}  // namespace
+
+SceneSdf load_sdf_cache(const fs::path& path, const Scene& scene, const MeshGridParams& mesh_params,
+                        const SceneHashParams& hash_params) {
+  return sdf_from_cache(read_input_bytes(path, "SDF cache", kMaxSdfCacheBytes), path, scene, mesh_params, hash_params);
+}
+
 SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
                           const CacheOptions& cache, std::ostream& log) {
   if (cache.path.empty()) return build_scene_sdf(scene, mesh_params, hash_params);
   const fs::path path = cache.path;
   std::error_code ec;
   if (fs::exists(path, ec)) {
+    const auto start = std::chrono::steady_clock::now();
+    // Outside the policy: a FIFO, device, directory or oversized file is no cache to replace.
+    const std::vector<std::byte> bytes = read_input_bytes(path, "SDF cache", kMaxSdfCacheBytes);
     try {
-      const auto start = std::chrono::steady_clock::now();
-      SceneSdf sdf = load_sdf_cache(path, scene, mesh_params, hash_params);
+      SceneSdf sdf = sdf_from_cache(bytes, path, scene, mesh_params, hash_params);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       log << "SDF cache: loaded '" << path.string() << "' in " << static_cast<long>(ms) << " ms (build skipped)\n";
       return sdf;

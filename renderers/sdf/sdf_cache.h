@@ -18,13 +18,15 @@ namespace sdfbench::sdf {
 // floor do not change the structures, so they do not invalidate a cache.
 uint64_t scene_geometry_hash(const Scene& scene);
 
-// Writes atomically (temporary file + rename): a reader never sees a half-written cache.
+// Writes atomically (temporary file + rename): a reader never sees a half-written cache. A cache
+// over kMaxSdfCacheBytes (which no loader would read) is refused instead.
 void write_sdf_cache(const std::filesystem::path& path, const Scene& scene, const SceneSdf& sdf,
                      const MeshGridParams& mesh_params);
 
 // Reads and validates a cache completely, then checks it belongs to this scene and these
-// parameters. Throws Error with a clear message for a missing, truncated, corrupt, hostile or
-// stale file; never returns structures that were not validated.
+// parameters. Throws Error with a clear message for a missing, special (FIFO, device,
+// directory), oversized, truncated, corrupt, hostile or stale file; never returns structures
+// that were not validated.
 SceneSdf load_sdf_cache(const std::filesystem::path& path, const Scene& scene, const MeshGridParams& mesh_params,
                         const SceneHashParams& hash_params);
 
@@ -39,7 +41,8 @@ struct CacheOptions {
 };
 
 // The one entry point for backends: no path -> build; a missing file -> build and write it; a
-// valid matching file -> load it (skipping the build); an invalid or stale file -> the policy.
+// valid matching file -> load it (skipping the build); an invalid or stale file -> the policy;
+// something that cannot be a cache (not a regular file, or over the size limit) -> an error.
 // Says on `log` which of these happened.
 SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
                           const CacheOptions& cache, std::ostream& log);

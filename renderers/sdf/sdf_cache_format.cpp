@@ -134,8 +134,9 @@ class Reader {
     uint64_t stored;
     std::memcpy(&stored, bytes_.data() + bytes_.size() - sizeof stored, sizeof stored);
     require(stored == fnv1a64(bytes_.first(bytes_.size() - sizeof stored)), "checksum mismatch (corrupted file)");
-    require(h.mesh_count >= 1 && h.mesh_count <= kMaxMeshes, "mesh count " + std::to_string(h.mesh_count));
-    require(h.instance_count >= 1 && h.instance_count <= kMaxInstances, "instance count " + std::to_string(h.instance_count));
+    // No meshes or instances is a scene of implicit objects only (its hash is one empty cell).
+    require(h.mesh_count <= kMaxMeshes, "mesh count " + std::to_string(h.mesh_count));
+    require(h.instance_count <= kMaxInstances, "instance count " + std::to_string(h.instance_count));
     require(h.section_count == h.mesh_count * kMeshKinds + (kKindCount - kMeshKinds),
             "section count " + std::to_string(h.section_count) + " for " + std::to_string(h.mesh_count) + " meshes");
     read_table(h);

@@ -26,6 +26,10 @@ namespace sdfbench::sdf {
 
 inline constexpr uint32_t kSdfCacheVersion = 1;
 
+// The largest cache sdfbench writes or reads: a reader refuses a bigger file by its size before
+// allocating anything (the structures it would hold would not fit a renderer's memory either).
+inline constexpr uint64_t kMaxSdfCacheBytes = 4ull << 30;
+
 struct SdfCacheSection {
   std::string name;  // e.g. "mesh 0 cell_triangles"
   uint64_t offset = 0, count = 0, bytes = 0;

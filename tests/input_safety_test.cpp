@@ -1,0 +1,333 @@
+// Hostile input files (issue 11, classes 3, 4, 6 and 7): special files, sizes that would
+// allocate gigabytes, OBJ numbers tinyobjloader reads as 0, JSON that nlohmann refuses with an
+// exception. Each must be one clear error line naming the file and what is wrong, exit 1,
+// quickly (every command runs under a timeout, so a hang fails instead of blocking the suite).
+#include <sys/stat.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include "harness/thesis_tables.h"
+#include "renderers/sdf/sdf_cache.h"
+#include "scenes/error.h"
+#include "scenes/mesh.h"
+#include "scenes/scene_loader.h"
+#include "tests/test_support.h"
+
+namespace sdfbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TimedRun {
+  int exit_code = -1;
+  std::string output;
+  double seconds = 0.0;
+};
+
+// The binary under `timeout 20` (exit 124 when it hangs), stdout and stderr together.
+TimedRun run_timed(const std::string& args) {
+  TimedRun r;
+  const auto start = std::chrono::steady_clock::now();
+  FILE* pipe = ::popen(("timeout 20 " + std::string(SDFBENCH_BINARY) + " " + args + " 2>&1").c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.output.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+// Exit 1, quickly, and exactly one line: "sdfbench: error: ..." holding every one of `words`.
+void expect_one_line_error(const std::string& args, std::initializer_list<std::string> words) {
+  const TimedRun r = run_timed(args);
+  SCOPED_TRACE(args + "\n" + r.output);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_LT(r.seconds, 10.0);
+  EXPECT_EQ(r.output.rfind("sdfbench: error: ", 0), 0u);
+  EXPECT_EQ(r.output.find('\n'), r.output.size() - 1);  // one line
+  for (const std::string& w : words) EXPECT_NE(r.output.find(w), std::string::npos) << "missing: " << w;
+}
+
+// The message of the Error that `f` throws ("" when it throws none).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+class InputSafety : public ::testing::Test {
+ protected:
+  InputSafety() {
+    fifo_ = dir_.path() / "fifo";
+    EXPECT_EQ(::mkfifo(fifo_.c_str(), 0600), 0);
+    fs::create_directory(dir_.path() / "folder");
+  }
+  // A FIFO (would block a reader for ever), a directory and an endless device.
+  std::vector<std::pair<fs::path, std::string>> special_files() const {
+    return {{fifo_, "not a regular file"}, {dir_.path() / "folder", "is a directory"}, {"/dev/zero", "not a regular file"}};
+  }
+  // A one-ball scene whose mesh (or texture) is `mesh_file` (`texture_file`).
+  fs::path scene_with(const std::string& mesh_file, const std::string& texture_file = "") const {
+    const std::string mesh = mesh_file.empty() ? R"({"builtin": "sphere"})" : R"({"file": ")" + mesh_file + R"("})";
+    const std::string texture = texture_file.empty() ? "" : R"(, "texture": {"file": ")" + texture_file + R"("})";
+    return dir_.write("scene.json", R"({"meshes": {"ball": )" + mesh + R"(},
+      "materials": {"paint": {"albedo": [1, 1, 1])" + texture + R"(}},
+      "instances": [{"mesh": "ball"}], "camera": {"position": [0, 1, 4], "look_at": [0, 0, 0]}})");
+  }
+
+  test::TempDir dir_;
+  fs::path fifo_;
+};
+
+const std::string kRender = "render --backend embree --size 16x9 --frames 1 --warmup 0 ";
+
+TEST_F(InputSafety, SpecialFilesAsSceneAreRefusedAtOnce) {
+  for (const auto& [path, words] : special_files())
+    expect_one_line_error(kRender + "--scene " + path.string(), {"scene file", path.string(), words});
+}
+
+TEST_F(InputSafety, SpecialFilesAsObjAreRefusedAtOnce) {
+  for (const auto& [path, words] : special_files()) {
+    const fs::path scene = scene_with(path.string());
+    expect_one_line_error(kRender + "--scene " + scene.string(), {"meshes.ball", "OBJ", path.string(), words});
+  }
+}
+
+TEST_F(InputSafety, SpecialFilesAsTextureAreRefusedAtOnce) {
+  for (const auto& [path, words] : special_files()) {
+    const fs::path scene = scene_with("", path.string());
+    expect_one_line_error(kRender + "--scene " + scene.string(),
+                          {"materials.paint.texture.file", "image", path.string(), words});
+  }
+}
+
+TEST_F(InputSafety, SpecialFilesAsCacheAreRefusedEvenWithRebuild) {
+  for (const auto& [path, words] : special_files()) {
+    for (const char* policy : {"", " --on-bad-cache rebuild"}) {
+      expect_one_line_error("render --backend sdf-cpu --scene thesis:sphere:1 --size 16x9 --frames 1 --warmup 0 --cache " +
+                                path.string() + policy,
+                            {"SDF cache", path.string(), words});
+    }
+    expect_one_line_error("inspect " + path.string(), {"SDF cache", path.string(), words});
+  }
+  struct stat st {};
+  ASSERT_EQ(::lstat(fifo_.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode)) << "the FIFO was replaced";
+}
+
+TEST_F(InputSafety, SparseHugeCacheIsRefusedByItsSize) {
+  const fs::path cache = dir_.path() / "huge.sdfcache";
+  { std::ofstream touch(cache); }
+  fs::resize_file(cache, 20ull << 30);  // 20 GiB, sparse: reading it, or allocating its size, would fail
+  expect_one_line_error("inspect " + cache.string(), {cache.string(), "20 GiB", "limit", "4.0 GiB"});
+  expect_one_line_error("render --backend sdf-cpu --scene thesis:sphere:1 --size 16x9 --frames 1 --warmup 0 --cache " +
+                            cache.string(),
+                        {cache.string(), "20 GiB", "limit"});
+}
+
+TEST_F(InputSafety, ThesisTablesMustBeARegularFile) {
+  const std::string e = error_of([&] { ThesisTables::load(fifo_); });
+  EXPECT_NE(e.find("thesis tables"), std::string::npos) << e;
+  EXPECT_NE(e.find("not a regular file"), std::string::npos) << e;
+  EXPECT_TRUE(ThesisTables::load_default().find("6.1", "bunny", 10).has_value());  // the real one still loads
+}
+
+// CRC-32 (PNG chunks): the PNG below is patched, and libpng checks the header's CRC.
+uint32_t crc32(const unsigned char* data, size_t n) {
+  uint32_t c = 0xffffffffu;
+  for (size_t i = 0; i < n; ++i) {
+    c ^= data[i];
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+  }
+  return ~c;
+}
+
+void put_be32(std::string& s, size_t at, uint32_t v) {
+  for (int k = 0; k < 4; ++k) s[at + k] = static_cast<char>(v >> (24 - 8 * k));
+}
+
+// A few-hundred-byte PNG whose header declares width x height (its pixels are missing).
+void write_png_declaring(const fs::path& path, uint32_t width, uint32_t height) {
+  const fs::path small = path.string() + ".1x1.png";
+  auto out = OIIO::ImageOutput::create("png");
+  ASSERT_TRUE(out && out->open(small.string(), OIIO::ImageSpec(1, 1, 3, OIIO::TypeDesc::UINT8)));
+  const unsigned char pixel[3] = {200, 100, 50};
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixel));
+  out->close();
+  std::ifstream in(small, std::ios::binary);
+  std::string png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(png.substr(12, 4), "IHDR");
+  put_be32(png, 16, width);
+  put_be32(png, 20, height);
+  put_be32(png, 29, crc32(reinterpret_cast<const unsigned char*>(png.data()) + 12, 17));
+  std::ofstream(path, std::ios::binary) << png;
+}
+
+TEST_F(InputSafety, TextureDeclaringHugeSizeIsRefusedBeforeDecoding) {
+  const fs::path png = dir_.path() / "huge.png";
+  write_png_declaring(png, 16384, 16384);
+  const fs::path scene = scene_with("", png.string());
+  expect_one_line_error(kRender + "--scene " + scene.string(),
+                        {"materials.paint.texture.file", png.string(), "16384x16384", "16777216 texels", "256 MiB"});
+  // The same header at 64x64 is read (and then fails on the missing pixels, with a clear error).
+  write_png_declaring(png, 64, 64);
+  const std::string e = error_of([&] { load_scene_file(scene); });
+  EXPECT_NE(e.find("cannot read image"), std::string::npos) << e;
+  write_png_declaring(png, 1, 1);  // and the real 1x1 image loads
+  EXPECT_EQ(load_scene_file(scene).texels.size(), 1u);
+}
+
+// Textures are decoded from memory (an OpenImageIO I/O proxy): every common format still loads.
+TEST_F(InputSafety, TextureFormatsLoadFromMemory) {
+  for (const char* ext : {"png", "jpg", "exr", "tif", "hdr", "tga", "bmp"}) {
+    SCOPED_TRACE(ext);
+    const fs::path image = dir_.path() / (std::string("tex.") + ext);
+    auto out = OIIO::ImageOutput::create(ext);
+    ASSERT_TRUE(out && out->open(image.string(), OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8)));
+    const unsigned char pixels[6] = {255, 255, 255, 0, 0, 0};
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels));
+    out->close();
+    const Scene scene = load_scene_file(scene_with("", image.string()));
+    ASSERT_EQ(scene.texels.size(), 2u);
+    EXPECT_GT(scene.texels[0].x, 0.9f);
+    EXPECT_LT(scene.texels[1].x, 0.1f);
+  }
+}
+
+std::string obj_error(const std::string& text) {
+  return error_of([&] { parse_obj(text, "bad.obj", "bad"); });
+}
+
+TEST(ObjInput, NonFiniteOrNonNumericCoordinatesNameFileAndLine) {
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  for (const char* coordinate : {"nan", "inf", "-inf", "abc", "1e39", "1e400", "0x10", "1.5.2", "3abc", "--1"}) {
+    const std::string e = obj_error(tri + "v " + coordinate + " 0 0\nf 1 2 3\n");
+    SCOPED_TRACE(coordinate);
+    EXPECT_NE(e.find("OBJ 'bad.obj' line 4"), std::string::npos) << e;
+    EXPECT_NE(e.find(std::string("'") + coordinate + "'"), std::string::npos) << e;
+  }
+  EXPECT_NE(obj_error(tri + "v 1 2\nf 1 2 3\n").find("line 4: a vertex needs 3 coordinates"), std::string::npos);
+  // What OBJ writers emit is still read: signs, exponents, tabs, CRLF, w and colour columns, comments.
+  const Mesh mesh = parse_obj("# c\r\nv +1 -0 .5\r\nv\t1e0 0 0 1\nv 0 1 0 0.5 0.5 0.5\n\nf 1 2 3\n", "ok.obj", "ok");
+  EXPECT_EQ(mesh.positions[0], glm::vec3(1.0f, 0.0f, 0.5f));
+  EXPECT_EQ(mesh.triangle_count(), 1u);
+}
+
+TEST(ObjInput, IndicesThatDoNotFitAreErrorsNotWrapped) {
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  struct Case {
+    std::string face, words;
+  };
+  for (const Case& c : std::initializer_list<Case>{
+           {"f 1 2 4294967299", "line 4: face uses vertex index 4294967299 but the file has 3 vertices"},
+           {"f 1 2 99999999999999999999", "line 4: face vertex '99999999999999999999' is not a vertex index"},
+           {"f 1 2 0", "line 4: face vertex '0' is not a vertex index"},
+           {"f 1 2 x", "line 4: face vertex 'x' is not a vertex index"},
+           {"f 1 2 -4", "line 4: face vertex index -4 refers before the first vertex"},
+           {"f 1 2 4/1/1", "line 4: face uses vertex index 4"},
+           {"f 1 2", "line 4: a face needs at least 3 vertices"},
+       }) {
+    const std::string e = obj_error(tri + c.face + "\n");
+    EXPECT_NE(e.find(c.words), std::string::npos) << c.face << ": " << e;
+  }
+  // Relative, textured and forward-declared indices still load; a quad is two triangles.
+  EXPECT_EQ(parse_obj(tri + "f -3/1 -2/2 -1/3\n", "ok.obj", "ok").triangle_count(), 1u);
+  EXPECT_EQ(parse_obj("f 1//1 2//1 3//1 4//1\n" + tri + "v 1 1 0\n", "ok.obj", "ok").triangle_count(), 2u);
+}
+
+TEST(ObjInput, TriangleCountIsBoundedBeforeParsing) {
+  // One face of 8 Mi + 3 corners (17 MB of text) would be 8 Mi + 1 triangles.
+  std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf";
+  text.reserve(text.size() + 2 * ((1u << 23) + 3) + 1);
+  for (uint32_t i = 0; i < (1u << 23) + 3; ++i) text += " 1";
+  const auto start = std::chrono::steady_clock::now();
+  const std::string e = obj_error(text + "\n");
+  EXPECT_NE(e.find("more than 8388608 triangles (the limit for an OBJ)"), std::string::npos) << e.substr(0, 300);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
+TEST_F(InputSafety, ObjErrorsReachTheCommandLineWithFieldFileAndLine) {
+  const fs::path obj = dir_.write("nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+  expect_one_line_error(kRender + "--scene " + scene_with(obj.string()).string(),
+                        {"meshes.ball", obj.string(), "line 3", "'nan' is not a finite"});
+  const fs::path wrapped = dir_.write("wrapped.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 4294967299\n");
+  expect_one_line_error(kRender + "--scene " + scene_with(wrapped.string()).string(),
+                        {"meshes.ball", wrapped.string(), "line 5", "4294967299"});
+}
+
+std::string scene_error(const std::string& json) {
+  return error_of([&] { parse_scene_json(json, "bad.json"); });
+}
+
+const std::string kBall = R"({"meshes": {"ball": {"builtin": "sphere"}}, "instances": [{"mesh": "ball"}],
+  )";
+
+TEST(SceneInput, JsonNumberOverflowNamesFileLineAndColumn) {
+  const std::string e = scene_error(kBall + R"("camera": {"position": [0, 1e400, 4], "look_at": [0, 0, 0]}})");
+  EXPECT_EQ(e.rfind("bad.json: malformed JSON at line 2, column 30: ", 0), 0u) << e;
+  EXPECT_NE(e.find("1e400"), std::string::npos) << e;
+  EXPECT_EQ(e.find("json.exception"), std::string::npos) << e;
+  const std::string syntax = scene_error("{\"camera\": [1,\n 2,]}");
+  EXPECT_NE(syntax.find("bad.json: malformed JSON: "), std::string::npos) << syntax;
+  EXPECT_NE(syntax.find("line 2"), std::string::npos) << syntax;
+}
+
+TEST_F(InputSafety, JsonNumberOverflowIsAUserErrorOnTheCommandLine) {
+  const fs::path scene = dir_.write("overflow.json", kBall + R"("camera": {"position": [0, 1, 4], "look_at": [0, 0, 0]},
+    "ambient": -1e400})");
+  expect_one_line_error(kRender + "--scene " + scene.string(), {scene.string(), "line 3", "1e400"});
+}
+
+TEST(SceneInput, VerticalViewSaysToGiveUp) {
+  const std::string e = scene_error(kBall + R"("camera": {"position": [0, 5, 0], "look_at": [0, 0, 0]}})");
+  EXPECT_NE(e.find("bad.json: camera: "), std::string::npos) << e;
+  EXPECT_NE(e.find("parallel to the default up [0, 1, 0]; give camera.up"), std::string::npos) << e;
+  EXPECT_EQ(e.find("missing required field"), std::string::npos) << e;
+  EXPECT_NO_THROW(parse_scene_json(kBall + R"("camera": {"position": [0, 5, 0], "look_at": [0, 0, 0], "up": [0, 0, -1]}})",
+                                   "ok.json"));
+}
+
+TEST(SceneInput, HugeIntegersAreReportedAsWritten) {
+  const std::string e = scene_error(kBall + R"("camera": {"position": [0, 1, 4], "look_at": [0, 0, 0]},
+    "render": {"width": 18446744073709551615}})");
+  EXPECT_NE(e.find("render.width"), std::string::npos) << e;
+  EXPECT_NE(e.find("18446744073709551615"), std::string::npos) << e;
+  EXPECT_NE(e.find("16384"), std::string::npos) << e;
+  const std::string negative = scene_error(kBall + R"("camera": {"position": [0, 1, 4], "look_at": [0, 0, 0]},
+    "render": {"height": -9223372036854775807}})");
+  EXPECT_NE(negative.find("-9223372036854775807"), std::string::npos) << negative;
+}
+
+TEST_F(InputSafety, ImplicitOnlySceneCacheIsReadBack) {
+  const fs::path scene = dir_.write("implicit.json", R"({
+    "implicits": [{"shape": {"type": "ellipsoid", "radii": [1, 1, 1]}}],
+    "camera": {"position": [0, 1, 4], "look_at": [0, 0, 0]}})");
+  const fs::path cache = dir_.path() / "implicit.sdfcache";
+  const TimedRun build = run_timed("build --scene " + scene.string() + " --cache " + cache.string());
+  ASSERT_EQ(build.exit_code, 0) << build.output;
+  const TimedRun render = run_timed("render --backend sdf-cpu --size 16x9 --frames 1 --warmup 0 --scene " + scene.string() +
+                               " --cache " + cache.string());
+  EXPECT_EQ(render.exit_code, 0) << render.output;
+  EXPECT_NE(render.output.find("build skipped"), std::string::npos) << render.output;
+  const TimedRun inspect = run_timed("inspect " + cache.string());
+  EXPECT_EQ(inspect.exit_code, 0) << inspect.output;
+  EXPECT_NE(inspect.output.find("(0 meshes, 0 instances)"), std::string::npos) << inspect.output;
+}
+
+}  // namespace
+}  // namespace sdfbench
