@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <map>
 
@@ -81,6 +82,14 @@ void add_backend_options(CLI::App& command, BackendOptions& options) {
   add_structure_options(command, options);
   command.add_option("--cache", options.cache.path,
                      "SDF structure cache file: loaded when valid for this scene and these parameters, else built and written")
+      ->check([](const std::string& path) -> std::string {
+        // Refused before the build, not after it when the cache is written: a FIFO would hang the
+        // read and a device must never be replaced.
+        std::error_code ec;
+        const std::filesystem::file_status st = std::filesystem::status(path, ec);
+        if (ec || !std::filesystem::exists(st) || std::filesystem::is_regular_file(st)) return "";
+        return "'" + path + "' exists and is not a regular file";
+      })
       ->group("SDF structures");
   command.add_option("--on-bad-cache", options.cache.on_bad, "an invalid or stale --cache file: refuse (default, an error) or rebuild")
       ->transform(CLI::CheckedTransformer(std::map<std::string, sdf::BadCachePolicy>{{"refuse", sdf::BadCachePolicy::Refuse},
