@@ -88,7 +88,8 @@ void add_backend_options(CLI::App& command, BackendOptions& options) {
         std::error_code ec;
         const std::filesystem::file_status st = std::filesystem::status(path, ec);
         if (ec || !std::filesystem::exists(st) || std::filesystem::is_regular_file(st)) return "";
-        return "'" + path + "' exists and is not a regular file";
+        if (std::filesystem::is_directory(st)) return "SDF cache '" + path + "' is a directory, not a file";
+        return "SDF cache '" + path + "' is not a regular file (a FIFO, socket or device)";
       })
       ->group("SDF structures");
   command.add_option("--on-bad-cache", options.cache.on_bad, "an invalid or stale --cache file: refuse (default, an error) or rebuild")
