@@ -37,13 +37,9 @@ struct TimedRun {
 TimedRun run_timed(const std::string& args) {
   TimedRun r;
   const auto start = std::chrono::steady_clock::now();
-  FILE* pipe = ::popen(("timeout 20 " + std::string(SDFBENCH_BINARY) + " " + args + " 2>&1").c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.output.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  const test::CommandResult run = test::run_command("timeout 20 " + std::string(SDFBENCH_BINARY) + " " + args);
+  r.exit_code = run.exit_code;
+  r.output = run.output;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -19,27 +19,8 @@
 namespace sdfbench {
 namespace {
 
-struct CommandRun {
-  int exit_code = -1;
-  std::string output;
-};
-
-// A shell command under `timeout`: a hang or runaway fails the test (exit 124) instead of stalling it.
-CommandRun run_shell(const std::string& shell_command, int seconds) {
-  CommandRun result;
-  const std::string command = "timeout -k 5 " + std::to_string(seconds) + " bash -c '" + shell_command + "' 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return result;
-}
-
-CommandRun run_limited(const std::string& args, int seconds = 30) {
-  return run_shell("exec " + std::string(SDFBENCH_BINARY) + " " + args, seconds);
+test::CommandResult run_limited(const std::string& args, int seconds = 30) {
+  return test::run_shell("exec " + std::string(SDFBENCH_BINARY) + " " + args, seconds);
 }
 
 // The last line of the output (the error line, after any progress lines).
@@ -53,7 +34,7 @@ std::string last_line(const std::string& output) {
 // Exit 1, one "sdfbench: error:" line no longer than `max_chars`, containing every word.
 void expect_short_error(const std::string& args, const std::vector<std::string>& words, size_t max_chars = 400,
                         int seconds = 30) {
-  const CommandRun r = run_limited(args, seconds);
+  const test::CommandResult r = run_limited(args, seconds);
   const std::string line = last_line(r.output);
   EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.output.substr(0, 2000);
   EXPECT_EQ(line.rfind("sdfbench: error: ", 0), 0u) << args << "\n" << r.output.substr(0, 2000);
@@ -84,7 +65,7 @@ TEST(Limits, DeeplyNestedCsgIsAShortErrorNotACrash) {
   }
   // Within the limits it still loads: 20 levels on the left are 41 nodes, an evaluation stack of 2.
   const std::string ok = dir.write("ok.json", nested_csg_scene(20, false)).string();
-  const CommandRun r = run_limited("render --backend embree --frames 1 --warmup 0 --size 8x8 --scene " + ok, 30);
+  const test::CommandResult r = run_limited("render --backend embree --frames 1 --warmup 0 --size 8x8 --scene " + ok, 30);
   EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
@@ -139,7 +120,7 @@ TEST(Limits, FarInstanceChangesNothingInView) {
   // the memory cap (which says so); the picture does not depend on it.
   const std::string backends = " --backends embree,tri-aabb,sdf-hash,sdf-octree,sdf-cpu --mode shadow --hash-cell 1000";
   for (const std::string& which : {std::string("near"), std::string("far")}) {
-    const CommandRun r = run_limited("compare --scene " + (dir.path() / (which + ".json")).string() + backends + " --out-dir " +
+    const test::CommandResult r = run_limited("compare --scene " + (dir.path() / (which + ".json")).string() + backends + " --out-dir " +
                                   (dir.path() / which).string(),
                               120);
     EXPECT_EQ(r.exit_code, 0) << which << ": every backend agrees with Embree\n" << r.output;
@@ -191,7 +172,7 @@ TEST(Limits, SceneIntegersAreReadAsWritten) {
 
 TEST(Limits, OutOfMemoryIsAClearErrorNotAnInternalOne) {
   // 1 GiB of address space: the 8192x4096 frame's images (1.4 GiB) cannot be allocated.
-  const CommandRun r = run_shell("ulimit -v 1048576; exec " + std::string(SDFBENCH_BINARY) +
+  const test::CommandResult r = test::run_shell("ulimit -v 1048576; exec " + std::string(SDFBENCH_BINARY) +
                              " render --backend embree --scene thesis:sphere:1 --size 8192x4096 --frames 1 --warmup 0",
                          60);
   const std::string line = last_line(r.output);

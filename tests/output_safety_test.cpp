@@ -28,18 +28,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Runs a shell command line under `timeout` (exit 124 when it ran past it); stdout + stderr.
-test::CommandResult run_shell(const std::string& command, int seconds = 60) {
-  test::CommandResult result;
-  FILE* pipe = ::popen(("timeout -k 5 " + std::to_string(seconds) + " sh -c '" + command + "' 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return result;
-}
+using test::run_shell;
+
 test::CommandResult sdfbench(const std::string& args) { return run_shell(std::string("exec ") + SDFBENCH_BINARY + " " + args); }
 
 // Exit 1 with one "sdfbench: error:" line holding every one of `words`.

@@ -29,9 +29,9 @@ std::filesystem::path TempDir::write(const std::string& name, const std::string&
   return p;
 }
 
-CommandResult run_sdfbench(const std::string& args) {
+CommandResult run_command(const std::string& command_line) {
   CommandResult result;
-  const std::string command = std::string(SDFBENCH_BINARY) + " " + args + " 2>&1";
+  const std::string command = command_line + " 2>&1";
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return result;
   std::array<char, 4096> buffer;
@@ -41,5 +41,11 @@ CommandResult run_sdfbench(const std::string& args) {
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return result;
 }
+
+CommandResult run_shell(const std::string& shell_command, int seconds) {
+  return run_command("timeout -k 5 " + std::to_string(seconds) + " bash -c '" + shell_command + "'");
+}
+
+CommandResult run_sdfbench(const std::string& args) { return run_command(std::string(SDFBENCH_BINARY) + " " + args); }
 
 }  // namespace sdfbench::test

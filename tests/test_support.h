@@ -21,6 +21,13 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
+// Runs a whole shell command line; its stdout and stderr together.
+CommandResult run_command(const std::string& command_line);
+
+// `shell_command` (bash) under `timeout`: exit 124 when it runs past `seconds`, so a hang or a
+// runaway fails the test instead of stalling it.
+CommandResult run_shell(const std::string& shell_command, int seconds = 60);
+
 // Runs the sdfbench binary with `args` (a shell-quoted string).
 CommandResult run_sdfbench(const std::string& args);
 
