@@ -46,11 +46,8 @@ void run_compare(const CompareArgs& args) {
   const RenderMode mode = parse_mode_option(args.mode);
   std::vector<std::string> backends = split_list(args.backends);
   if (backends.empty()) throw Error("--backends: give at least one backend, e.g. embree,tri-aabb");
-  for (const std::string& b : backends)
-    if (std::find(backend_names().begin(), backend_names().end(), b) == backend_names().end())
-      create_renderer(b, args.backend_options);  // throws the "unknown backend" error
-  if (std::find(backend_names().begin(), backend_names().end(), args.reference) == backend_names().end())
-    create_renderer(args.reference, args.backend_options);
+  for (const std::string& b : backends) check_backend_name(b);
+  check_backend_name(args.reference);
   if (!args.out_dir.empty() && !std::filesystem::is_directory(args.out_dir))
     throw Error("--out-dir '" + args.out_dir + "' is not a directory");
 

@@ -8,6 +8,7 @@
 #include "harness/system_info.h"
 #include "renderers/renderer.h"
 #include "renderers/vulkan/loop_cap_probe.h"
+#include "renderers/vulkan/ray_tracing_support.h"
 #include "renderers/vulkan/vulkan_context.h"
 #include "scenes/error.h"
 #include "scenes/mesh.h"
@@ -24,6 +25,17 @@ std::string describe_loop_cap(const VulkanDeviceInfo& device) {
     return "yes, a loop of " + std::to_string(kLoopCapProbeTrips) +
            " iterations stopped short (lavapipe before Mesa 25: 65535 per invocation); whitted runs in passes, "
            "cut pixels are flagged";
+  } catch (const Error& e) {
+    return std::string("not probed: ") + e.what();
+  }
+}
+
+// Whether the device can run vk-rt (the ray-tracing pipeline extensions and features).
+std::string describe_ray_tracing(const VulkanDeviceInfo& device) {
+  try {
+    const VulkanContext context(VulkanContext::Options{std::to_string(device.index), false});
+    const std::string gap = ray_tracing_gap(query_ray_tracing_support(context.physical_device()));
+    return gap.empty() ? "yes (VK_KHR_ray_tracing_pipeline, VK_KHR_acceleration_structure)" : "no: " + gap;
   } catch (const Error& e) {
     return std::string("not probed: ") + e.what();
   }
@@ -46,6 +58,7 @@ void print_info() {
       std::cout << "  " << d.index << ": " << d.name << "\n     type " << d.type << ", driver " << d.driver << " ("
                 << d.driver_info << "), Vulkan " << d.api_version << (is_default ? "  [default]" : "") << "\n";
       std::cout << "     loop cap: " << describe_loop_cap(d) << "\n";
+      std::cout << "     vk-rt:    " << describe_ray_tracing(d) << "\n";
     }
   } catch (const Error& e) {
     std::cout << "  unavailable: " << e.what() << "\n";

@@ -19,7 +19,7 @@ struct SweepArgs {
 
 void run_sweep(SweepArgs args) {
   if (args.backend.rfind("sdf-", 0) != 0) throw Error("--backend '" + args.backend + "': a sweep varies SDF structures (sdf-octree, sdf-hash, sdf-cpu)");
-  create_renderer(args.backend, args.options);  // unknown backend: the usual error
+  check_backend_name(args.backend);
   args.run.settings.check_size = parse_size(args.run.check_size);
   args.run.plan();  // a bad --shard fails before the plan is built
   BenchConfig base;

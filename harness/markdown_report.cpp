@@ -120,6 +120,34 @@ void speedup_table(std::ostringstream& out, const std::vector<Row>& sdf, const s
   out << "\n";
 }
 
+// The thesis' structure against the driver's BVH on the same device, in one mode: sdf-octree
+// FPS / vk-rt FPS (above 1: the SDF scene is faster).
+void driver_bvh_table(std::ostringstream& out, const std::string& mode, const std::vector<Row>& rows) {
+  std::vector<Row> sdf, rt;
+  for (const Row& r : rows) {
+    if (r["agreement"].rfind("ERROR", 0) == 0) continue;
+    if (r["backend"] == "sdf-octree") sdf.push_back(r);
+    if (r["backend"] == "vk-rt") rt.push_back(r);
+  }
+  if (sdf.empty() || rt.empty()) return;
+  out << "### sdf-octree against the driver's BVH, " << mode << " mode (sdf-octree FPS / vk-rt FPS, " << sizes_of(rows)
+      << ")\n\n";
+  const std::vector<size_t> counts = ordered_counts(sdf);
+  header(out, "mesh \\ objects", counts);
+  for (const std::string& mesh : ordered_meshes(sdf)) {
+    out << "| " << mesh << " |";
+    for (size_t c : counts) {
+      const Row* a = find_row(sdf, mesh, c);
+      const Row* b = find_row(rt, mesh, c);
+      std::string cell = a && b && b->number("fps") > 0 ? fixed(a->number("fps") / b->number("fps"), 2) + "x" : "–";
+      if (a && b && (truncated(*a) || truncated(*b))) cell += " ✂";
+      out << " " << cell << " |";
+    }
+    out << "\n";
+  }
+  out << "\n";
+}
+
 void backends_table(std::ostringstream& out, const std::string& mode, const std::vector<Row>& rows) {
   std::vector<std::string> backends;
   for (const Row& r : rows)
@@ -183,7 +211,10 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
   for (const ThesisTableConfig& config : thesis_table_configs())
     if (by_table.count(config.id)) thesis_table(out, config, by_table[config.id], thesis);
   if (by_table.count("6.1") && by_table.count("6.3")) speedup_table(out, by_table["6.1"], by_table["6.3"], thesis);
-  for (const auto& [mode, mode_rows] : by_mode) backends_table(out, mode, mode_rows);
+  for (const auto& [mode, mode_rows] : by_mode) {
+    backends_table(out, mode, mode_rows);
+    driver_bvh_table(out, mode, mode_rows);
+  }
   if (!sweep.empty()) sweep_table(out, sweep);
   if (rows.empty()) out << "(no measurements)\n";
   out << "Flags: ✗ images disagree with the reference (see the CSV's agreement column), † the time budget cut the run "

@@ -1,5 +1,6 @@
 #include "renderers/renderer.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <thread>
 
@@ -7,6 +8,7 @@
 #include "renderers/sdf/sdf_cpu_renderer.h"
 #include "renderers/sdf_vk/sdf_vk_renderer.h"
 #include "renderers/tri_aabb/tri_aabb_renderer.h"
+#include "renderers/vk_rt/vk_rt_renderer.h"
 #include "scenes/error.h"
 
 namespace sdfbench {
@@ -28,7 +30,7 @@ std::string to_string(RenderMode mode) {
 }
 
 const std::vector<std::string>& backend_names() {
-  static const std::vector<std::string> names = {"embree", "tri-aabb", "sdf-hash", "sdf-octree", "sdf-cpu"};
+  static const std::vector<std::string> names = {"embree", "tri-aabb", "vk-rt", "sdf-hash", "sdf-octree", "sdf-cpu"};
   return names;
 }
 
@@ -37,10 +39,18 @@ bool is_sdf_backend(const std::string& name) { return name.rfind("sdf-", 0) == 0
 std::unique_ptr<Renderer> create_renderer(const std::string& name, const BackendOptions& options) {
   if (name == "embree") return std::make_unique<EmbreeRenderer>(options);
   if (name == "tri-aabb") return std::make_unique<TriAabbRenderer>(options);
+  if (name == "vk-rt") return std::make_unique<VkRtRenderer>(options);
   if (name == "sdf-hash" || name == "sdf-octree") return std::make_unique<SdfVkRenderer>(name, options);
   if (name == "sdf-cpu") return std::make_unique<SdfCpuRenderer>(options);
+  check_backend_name(name);
+  throw Error("internal: backend '" + name + "' has no constructor");
+}
+
+void check_backend_name(const std::string& name) {
+  const std::vector<std::string>& names = backend_names();
+  if (std::find(names.begin(), names.end(), name) != names.end()) return;
   std::string known;
-  for (const std::string& n : backend_names()) known += (known.empty() ? "" : ", ") + n;
+  for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
   throw Error("unknown backend '" + name + "' (available: " + known + ")");
 }
 

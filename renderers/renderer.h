@@ -96,6 +96,8 @@ class Renderer {
 const std::vector<std::string>& backend_names();
 bool is_sdf_backend(const std::string& name);  // sdf-hash, sdf-octree, sdf-cpu: they sphere-trace
 // Throws Error for an unknown name, listing the known ones.
+void check_backend_name(const std::string& name);
+// Throws Error for an unknown name (as check_backend_name) or a device the backend cannot use.
 std::unique_ptr<Renderer> create_renderer(const std::string& name, const BackendOptions& options);
 
 // "<backend>: lavapipe's loop limit ... cut N pixels short: ..." for a frame with truncated pixels

@@ -11,6 +11,7 @@
 #include "harness/image_agreement.h"
 #include "renderers/renderer.h"
 #include "renderers/vulkan/loop_cap_probe.h"
+#include "scenes/error.h"
 #include "scenes/thesis_layout.h"
 #include "tests/test_support.h"
 
@@ -54,6 +55,19 @@ TEST_F(OldLavapipe, ProbeFindsTheCapAndInfoSaysSo) {
   const test::CommandResult r = test::run_sdfbench("info");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("loop cap: yes"), std::string::npos) << r.output;
+}
+
+// Mesa 22.3's lavapipe has no ray tracing: a real device without the extension.
+TEST_F(OldLavapipe, VkRtSaysTheDeviceLacksRayTracing) {
+  try {
+    create_renderer("vk-rt", BackendOptions{});
+    FAIL() << "vk-rt was created on Mesa 22.3's lavapipe";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("vk-rt: device 'llvmpipe"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("' lacks VK_KHR_ray_tracing_pipeline"), std::string::npos) << e.what();
+  }
+  const test::CommandResult r = test::run_sdfbench("info");
+  EXPECT_NE(r.output.find("vk-rt:    no: lacks VK_KHR_ray_tracing_pipeline"), std::string::npos) << r.output;
 }
 
 TEST(LoopCap, DefaultLavapipeHasNone) {

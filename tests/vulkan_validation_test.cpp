@@ -22,6 +22,26 @@ TEST(VulkanValidation, TriAabbRendersWithoutValidationMessages) {
   EXPECT_EQ(renderer->validation_messages(), 0u);
 }
 
+// vk-rt: acceleration-structure builds and compaction, the ray-tracing pipeline and its shader
+// binding table, every mode, an instrumented frame, whitted in one invocation and in passes.
+TEST(VulkanValidation, VkRtRendersWithoutValidationMessages) {
+  for (bool passes : {false, true}) {
+    BackendOptions options;
+    options.validation = true;
+    options.whitted_passes = passes;
+    auto renderer = create_renderer("vk-rt", options);
+    const Scene monkeys = make_thesis_scene({"monkey", 10, 1}), bunnies = make_thesis_scene({"bunny", 3, 2});
+    renderer->prepare(monkeys);
+    for (RenderMode mode : {RenderMode::Primary, RenderMode::Shadow, RenderMode::Whitted}) {
+      renderer->render(FrameRequest{64, 36, mode, true});
+      renderer->render(FrameRequest{300, 20, mode, false, std::nullopt, true});  // another size, counters
+    }
+    renderer->prepare(bunnies);  // structures rebuilt for another scene
+    renderer->render(FrameRequest{32, 18, RenderMode::Shadow, true});
+    EXPECT_EQ(renderer->validation_messages(), 0u) << "whitted passes " << passes;
+  }
+}
+
 TEST(VulkanValidation, NegativeControlInvalidUsageIsCounted) {
   VulkanContext context(VulkanContext::Options{"lavapipe", true});
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};

@@ -30,7 +30,7 @@ SdfVkRenderer::SdfVkRenderer(std::string name, const BackendOptions& options)
     : name_(std::move(name)),
       options_(options),
       context_(VulkanContext::Options{options.device, options.validation}),
-      runner_(context_, "sdf_trace.comp", kSdfCounters, options.whitted_passes) {
+      runner_(context_, compute_tile_kernels(context_, "sdf_trace.comp"), kSdfCounters, options.whitted_passes) {
   sdf::validate(scene_hash_params_for(name_, options_));
 }
 

@@ -1,5 +1,6 @@
-// Entry point shared by the Vulkan backends. The backend's .comp file declares its own
-// scene bindings (binding >= 8) and closest_hit/any_hit, then includes this file.
+// Entry point shared by the Vulkan backends. The backend's .comp file (vk-rt: its ray-generation
+// shader, which defines RAY_GENERATION) declares its own scene bindings (binding >= 8) and
+// closest_hit/any_hit, then includes this file. An invocation renders one pixel of a tile.
 // VulkanFrameRunner compiles it per mode and scene: SHADING_MODE (MODE_*), SHADING_TEXTURES and
 // SHADING_IMPLICITS (bool), COUNTERS (0 or 1, work_counters.glsl), WHITTED_PASSES (0 or 1).
 //
@@ -7,7 +8,14 @@
 // private memory. On drivers with a per-invocation loop cap (lavapipe before Mesa 25:
 // loop_cap_probe.h) WHITTED_PASSES 1 traces one ray of each pixel per dispatch instead, the
 // stack and the pixel's state kept in buffers between passes.
+#ifdef RAY_GENERATION
+#define LAUNCH_ID gl_LaunchIDEXT.xy
+#define LAUNCH_WIDTH gl_LaunchSizeEXT.x
+#else
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+#define LAUNCH_ID gl_GlobalInvocationID.xy
+#define LAUNCH_WIDTH (gl_NumWorkGroups.x * gl_WorkGroupSize.x)
+#endif
 
 layout(push_constant) uniform TilePush {
   uvec4 tile;  // xy: pixel offset of this dispatch's tile; z: whitted pass (0: the first); w: 2 (loop_limit_hit)
@@ -77,10 +85,10 @@ void store_counters(uint index, bool first) {
 #endif
 
 void main() {
-  uvec2 pixel = gl_GlobalInvocationID.xy + push.tile.xy;
+  uvec2 pixel = LAUNCH_ID + push.tile.xy;
   if (pixel.x >= frame.image.x || pixel.y >= frame.image.y) return;
   uint index = pixel.y * frame.image.x + pixel.x;
-  uint slot = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
+  uint slot = LAUNCH_ID.y * LAUNCH_WIDTH + LAUNCH_ID.x;
 #if WHITTED_PASSES
   stack_base = slot * STACK_SIZE;
   bool first = SHADING_MODE != MODE_WHITTED || push.tile.z == 0u;

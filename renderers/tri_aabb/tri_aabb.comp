@@ -6,14 +6,8 @@
 // against its world AABB, then Möller–Trumbore against every triangle of its mesh.
 
 #include "frame_bindings.glsl"
-#include "tri_aabb_types.glsl"
+#include "triangle_tables.glsl"
 #include "ray_triangle.glsl"
-
-layout(std430, binding = 8) readonly buffer InstanceBlock { TriInstance instances[]; };
-// Triangle data in texel buffers: lavapipe serves divergent texel fetches far faster than
-// divergent storage-buffer reads (DESIGN.md, measured). 3 texels per triangle.
-layout(binding = 9) uniform textureBuffer tri_vertices;  // v0, v1, v2 (object space)
-layout(binding = 10) uniform textureBuffer tri_normals;  // vertex normals n0, n1, n2
 
 vec3 safe_inverse(vec3 d) {
   const float tiny = 1e-30f;
@@ -65,15 +59,7 @@ bool closest_hit(Ray ray, float tmax, out Hit hit) {
     }
   }
   if (best_instance == NO_INSTANCE) return false;
-  int base = 3 * (int(instances[best_instance].info.x) + int(best_prim));
-  vec3 n = interpolate_barycentric(texelFetch(tri_normals, base).xyz, texelFetch(tri_normals, base + 1).xyz,
-                                   texelFetch(tri_normals, base + 2).xyz, best_uv);
-  hit.t = best_t;
-  hit.instance = best_instance;
-  hit.prim = best_prim;
-  hit.material = instances[best_instance].info.z;
-  hit.normal = normalize(mat3(instances[best_instance].object_to_world) * n);
-  hit.uv = best_uv;
+  fill_triangle_hit(best_instance, best_prim, best_uv, best_t, hit);
   return true;
 }
 

@@ -2,7 +2,7 @@
 #include <memory>
 
 #include "renderers/renderer.h"
-#include "renderers/vulkan/gpu_buffer.h"
+#include "renderers/vulkan/triangle_buffers.h"
 #include "renderers/vulkan/vulkan_context.h"
 #include "renderers/vulkan/vulkan_frame_runner.h"
 
@@ -21,7 +21,7 @@ class TriAabbRenderer : public Renderer {
 
  private:
   VulkanContext context_;
-  GpuBuffer instances_, vertices_, normals_;
+  std::unique_ptr<TriangleBuffers> tables_;
   VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
 };
 

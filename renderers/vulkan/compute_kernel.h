@@ -5,16 +5,10 @@
 
 #include <vulkan/vulkan.h>
 
-#include "renderers/vulkan/gpu_buffer.h"
+#include "renderers/vulkan/descriptor_set.h"
 #include "renderers/vulkan/vulkan_context.h"
 
 namespace sdfbench {
-
-struct KernelBinding {
-  uint32_t binding;
-  VkDescriptorType type;  // UNIFORM_BUFFER, STORAGE_BUFFER or UNIFORM_TEXEL_BUFFER
-  const GpuBuffer* buffer;
-};
 
 class ComputeKernel {
  public:
@@ -31,11 +25,9 @@ class ComputeKernel {
   void release();
 
   const VulkanContext& context_;
-  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+  DescriptorSet descriptors_;
   VkPipelineLayout pipeline_layout_ = VK_NULL_HANDLE;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
-  VkDescriptorPool pool_ = VK_NULL_HANDLE;
-  VkDescriptorSet set_ = VK_NULL_HANDLE;
 };
 
 }  // namespace sdfbench

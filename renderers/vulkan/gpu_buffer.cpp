@@ -23,7 +23,8 @@ GpuBuffer::GpuBuffer(const VulkanContext& context, VkDeviceSize bytes, VkBufferU
     : context_(&context), size_(std::max<VkDeviceSize>(bytes, 16)), what_(what) {
   const VkPhysicalDeviceLimits& limits = context.properties().limits;
   const std::string& device = context.info().name;
-  if (usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT)
+  // A buffer the device reads by address (acceleration-structure scratch) is bound through no descriptor.
+  if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && !(usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT))
     check_limit(what, size_, limits.maxStorageBufferRange, "maxStorageBufferRange", device);
   if (usage & VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT)
     check_limit(what, size_, limits.maxUniformBufferRange, "maxUniformBufferRange", device);
@@ -36,10 +37,14 @@ GpuBuffer::GpuBuffer(const VulkanContext& context, VkDeviceSize bytes, VkBufferU
   try {
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(context.device(), buffer_, &req);
-    const VkMemoryPropertyFlags required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    const VkMemoryPropertyFlags required =
+        use == Use::DeviceOnly ? 0 : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     const VkMemoryPropertyFlags preferred =
-        use == Use::Upload ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT : VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+        use == Use::Readback ? VK_MEMORY_PROPERTY_HOST_CACHED_BIT : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+    flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+    if (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) alloc.pNext = &flags;
     alloc.allocationSize = req.size;
     alloc.memoryTypeIndex = context.find_memory_type(req.memoryTypeBits, required, preferred);
     const VkResult result = vkAllocateMemory(context.device(), &alloc, nullptr, &memory_);
@@ -47,7 +52,8 @@ GpuBuffer::GpuBuffer(const VulkanContext& context, VkDeviceSize bytes, VkBufferU
       throw Error(std::string("out of memory allocating the ") + what + " (" + std::to_string(req.size) + " bytes)");
     vk_check(result, "vkAllocateMemory");
     vk_check(vkBindBufferMemory(context.device(), buffer_, memory_, 0), "vkBindBufferMemory");
-    vk_check(vkMapMemory(context.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
+    if (use != Use::DeviceOnly)
+      vk_check(vkMapMemory(context.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
   } catch (...) {
     release();
     throw;
@@ -86,13 +92,21 @@ void GpuBuffer::release() {
 }
 
 void GpuBuffer::write(const void* data, size_t bytes, size_t offset) {
+  if (!mapped_) throw Error(std::string("internal: the ") + what_ + " is not host-visible");
   if (offset + bytes > size_) throw Error(std::string("internal: write past the end of the ") + what_);
   std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
 }
 
 void GpuBuffer::read(void* data, size_t bytes, size_t offset) const {
+  if (!mapped_) throw Error(std::string("internal: the ") + what_ + " is not host-visible");
   if (offset + bytes > size_) throw Error(std::string("internal: read past the end of the ") + what_);
   std::memcpy(data, static_cast<const char*>(mapped_) + offset, bytes);
+}
+
+VkDeviceAddress GpuBuffer::device_address() const {
+  VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+  info.buffer = buffer_;
+  return vkGetBufferDeviceAddress(context_->device(), &info);
 }
 
 VkBufferView GpuBuffer::texel_view(VkFormat format, size_t texel_bytes) {

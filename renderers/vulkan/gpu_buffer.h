@@ -1,6 +1,7 @@
 #pragma once
 // A Vulkan buffer with persistently mapped host-visible memory (on lavapipe all memory is
-// host memory; on GPUs, device-local + host-visible is preferred where the driver offers it).
+// host memory; on GPUs, device-local + host-visible is preferred where the driver offers it), or
+// device-only memory the host never touches (acceleration structures and their scratch).
 #include <cstddef>
 
 #include <vulkan/vulkan.h>
@@ -11,7 +12,7 @@ namespace sdfbench {
 
 class GpuBuffer {
  public:
-  enum class Use { Upload, Readback };
+  enum class Use { Upload, Readback, DeviceOnly };
 
   GpuBuffer() = default;
   // Throws Error when `bytes` exceeds the device's limit for the usage (maxStorageBufferRange,
@@ -25,6 +26,8 @@ class GpuBuffer {
 
   void write(const void* data, size_t bytes, size_t offset = 0);
   void read(void* data, size_t bytes, size_t offset = 0) const;
+  // The buffer's device address; needs VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT.
+  VkDeviceAddress device_address() const;
   // A texel view (for textureBuffer / utextureBuffer) of the whole buffer.
   VkBufferView texel_view(VkFormat format, size_t texel_bytes);
 

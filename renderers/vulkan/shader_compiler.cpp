@@ -28,9 +28,21 @@ class EmbeddedIncluder : public glslang::TShader::Includer {
   }
 };
 
+EShLanguage stage_of(const std::string& name) {
+  auto ends_with = [&](const char* suffix) {
+    const std::string s(suffix);
+    return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
+  };
+  if (ends_with(".comp")) return EShLangCompute;
+  if (ends_with(".rgen")) return EShLangRayGen;
+  if (ends_with(".rchit")) return EShLangClosestHit;
+  if (ends_with(".rmiss")) return EShLangMiss;
+  throw Error("internal: no shader stage for '" + name + "'");
+}
+
 }  // namespace
 
-std::vector<uint32_t> compile_compute_shader(const std::string& name, const std::string& preamble) {
+std::vector<uint32_t> compile_shader(const std::string& name, const std::string& preamble) {
   static std::once_flag initialised;
   std::call_once(initialised, [] { glslang::InitializeProcess(); });
 
@@ -38,18 +50,19 @@ std::vector<uint32_t> compile_compute_shader(const std::string& name, const std:
   auto it = shaders.find(name);
   if (it == shaders.end()) throw Error("internal: no embedded shader named '" + name + "'");
 
-  glslang::TShader shader(EShLangCompute);
+  const EShLanguage stage = stage_of(name);
+  glslang::TShader shader(stage);
   const char* source = it->second.data();
   const int length = static_cast<int>(it->second.size());
   const char* source_name = it->first.c_str();
   shader.setStringsWithLengthsAndNames(&source, &length, &source_name, 1);
   shader.setPreamble(preamble.c_str());
-  shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
+  shader.setEnvInput(glslang::EShSourceGlsl, stage, glslang::EShClientVulkan, 100);
   shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
   shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
   const EShMessages messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
   EmbeddedIncluder includer;
-  if (!shader.parse(GetDefaultResources(), 450, false, messages, includer))
+  if (!shader.parse(GetDefaultResources(), 460, false, messages, includer))
     throw Error("GLSL compile of '" + name + "' failed:\n" + shader.getInfoLog());
 
   glslang::TProgram program;
@@ -59,7 +72,7 @@ std::vector<uint32_t> compile_compute_shader(const std::string& name, const std:
   std::vector<uint32_t> spirv;
   glslang::SpvOptions options;
   options.validate = true;
-  glslang::GlslangToSpv(*program.getIntermediate(EShLangCompute), spirv, &options);
+  glslang::GlslangToSpv(*program.getIntermediate(stage), spirv, &options);
   return spirv;
 }
 

@@ -5,8 +5,8 @@
 
 namespace sdfbench {
 
-// Compiles an embedded GLSL compute shader (and its #includes) to SPIR-V with glslang.
-// Throws Error with glslang's log on failure.
-std::vector<uint32_t> compile_compute_shader(const std::string& name, const std::string& preamble = "");
+// Compiles an embedded GLSL shader (and its #includes) to SPIR-V 1.5 with glslang; the stage
+// follows the name: .comp, .rgen, .rchit or .rmiss. Throws Error with glslang's log on failure.
+std::vector<uint32_t> compile_shader(const std::string& name, const std::string& preamble = "");
 
 }  // namespace sdfbench

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <iostream>
 
+#include "renderers/vulkan/ray_tracing_support.h"
 #include "renderers/vulkan/vk_error.h"
 #include "scenes/error.h"
 
@@ -188,6 +189,23 @@ VulkanContext::VulkanContext(const Options& options) {
     VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     device_info.queueCreateInfoCount = 1;
     device_info.pQueueCreateInfos = &queue_info;
+    VkPhysicalDeviceBufferDeviceAddressFeatures address{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BUFFER_DEVICE_ADDRESS_FEATURES};
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR structures{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+    VkPhysicalDeviceRayTracingPipelineFeaturesKHR pipeline{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+    if (options.ray_tracing) {
+      const std::string gap = ray_tracing_gap(query_ray_tracing_support(physical_));
+      if (!gap.empty()) throw Error("device '" + info_.name + "' " + gap);
+      address.bufferDeviceAddress = VK_TRUE;
+      structures.accelerationStructure = VK_TRUE;
+      pipeline.rayTracingPipeline = VK_TRUE;
+      address.pNext = &structures;
+      structures.pNext = &pipeline;
+      device_info.pNext = &address;
+      device_info.enabledExtensionCount = static_cast<uint32_t>(ray_tracing_extensions().size());
+      device_info.ppEnabledExtensionNames = ray_tracing_extensions().data();
+    }
     vk_check(vkCreateDevice(physical_, &device_info, nullptr, &device_), "vkCreateDevice");
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
 
@@ -230,7 +248,7 @@ uint32_t VulkanContext::find_memory_type(uint32_t type_bits, VkMemoryPropertyFla
     if ((flags & preferred) == preferred) return i;
     if (fallback < 0) fallback = static_cast<int>(i);
   }
-  if (fallback < 0) throw Error("Vulkan device '" + info_.name + "' has no suitable host-visible memory type");
+  if (fallback < 0) throw Error("Vulkan device '" + info_.name + "' has no memory type with the properties a buffer needs");
   return static_cast<uint32_t>(fallback);
 }
 

@@ -22,6 +22,9 @@ class VulkanContext {
   struct Options {
     std::string device = "lavapipe";
     bool validation = false;
+    // Enable the ray-tracing pipeline extensions and bufferDeviceAddress (vk-rt); a device that
+    // lacks them is an Error "device 'X' lacks ..." (ray_tracing_support.h).
+    bool ray_tracing = false;
   };
 
   explicit VulkanContext(const Options& options);

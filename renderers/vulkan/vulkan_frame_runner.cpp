@@ -5,7 +5,6 @@
 
 #include "renderers/frame_params.h"
 #include "renderers/vulkan/loop_cap_probe.h"
-#include "renderers/vulkan/shader_compiler.h"
 #include "renderers/vulkan/vk_error.h"
 #include "scenes/error.h"
 
@@ -16,10 +15,10 @@ constexpr uint32_t kLoopProbeTrips = 2;  // the trip count of render_main.glsl's
 
 }  // namespace
 
-VulkanFrameRunner::VulkanFrameRunner(VulkanContext& context, std::string shader_name, uint32_t counter_kinds,
+VulkanFrameRunner::VulkanFrameRunner(VulkanContext& context, TileKernelFactory kernels, uint32_t counter_kinds,
                                      std::optional<bool> whitted_passes)
     : context_(context),
-      shader_name_(std::move(shader_name)),
+      kernels_(std::move(kernels)),
       counter_kinds_(counter_kinds),
       whitted_passes_(whitted_passes ? *whitted_passes : has_loop_cap(context)) {
   VkDevice device = context.device();
@@ -76,7 +75,6 @@ void VulkanFrameRunner::set_scene(const Scene& scene, std::vector<KernelBinding>
                               "implicit nodes");
   if (node_bytes) implicit_nodes_.write(inputs.implicit_nodes.data(), node_bytes);
   kernel_.reset();
-  spirv_ = {};
   width_ = height_ = 0;
 }
 
@@ -112,23 +110,18 @@ void VulkanFrameRunner::prepare_outputs(uint32_t width, uint32_t height, RenderM
   // One kernel per mode (and textures or not, implicit objects or not, counters or not), so that
   // the compiler drops the code a frame cannot use: on lavapipe, branching on them at run time
   // cost ~80 ms per 720p frame.
-  std::vector<uint32_t>& spirv = spirv_[2 * static_cast<size_t>(mode) + counters];
-  if (spirv.empty())
-    spirv = compile_compute_shader(shader_name_, "#define SHADING_MODE " + std::to_string(static_cast<int>(mode)) +
-                                                     "u\n#define SHADING_TEXTURES " +
-                                                     (scene_->texels.empty() ? "false" : "true") +
-                                                     "\n#define SHADING_IMPLICITS " +
-                                                     (scene_->implicits.empty() ? "false" : "true") +
-                                                     "\n#define COUNTERS " + (counters ? "1" : "0") +
-                                                     "\n#define WHITTED_PASSES " + (whitted_passes_ ? "1" : "0") + "\n");
-  kernel_ = std::make_unique<ComputeKernel>(context_, spirv, bindings, static_cast<uint32_t>(sizeof(glm::uvec4)));
+  kernel_ = kernels_("#define SHADING_MODE " + std::to_string(static_cast<int>(mode)) + "u\n#define SHADING_TEXTURES " +
+                         (scene_->texels.empty() ? "false" : "true") + "\n#define SHADING_IMPLICITS " +
+                         (scene_->implicits.empty() ? "false" : "true") + "\n#define COUNTERS " + (counters ? "1" : "0") +
+                         "\n#define WHITTED_PASSES " + (whitted_passes_ ? "1" : "0") + "\n",
+                     bindings);
   width_ = width;
   height_ = height;
   mode_ = mode;
   counting_ = counters;
 }
 
-void VulkanFrameRunner::submit(const std::vector<glm::uvec4>& dispatches, FrameResult& result) {
+void VulkanFrameRunner::submit(const std::vector<glm::uvec4>& launches, FrameResult& result) {
   VkDevice device = context_.device();
   vk_check(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -138,23 +131,19 @@ void VulkanFrameRunner::submit(const std::vector<glm::uvec4>& dispatches, FrameR
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
   barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-  vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier,
-                       0, nullptr, 0, nullptr);
+  const VkPipelineStageFlags stage = kernel_->stage();
+  vkCmdPipelineBarrier(cmd_, stage, stage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
   if (queries_) {
     vkCmdResetQueryPool(cmd_, queries_, 0, 2);
     vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
   }
   kernel_->bind(cmd_);
-  for (const glm::uvec4& tile : dispatches) {
-    kernel_->push(cmd_, &tile, sizeof(tile));
-    const uint32_t w = std::min(kTileSize, width_ - tile.x), h = std::min(kTileSize, height_ - tile.y);
-    vkCmdDispatch(cmd_, (w + 7) / 8, (h + 7) / 8, 1);
-  }
+  for (const glm::uvec4& tile : launches)
+    kernel_->launch(cmd_, tile, std::min(kTileSize, width_ - tile.x), std::min(kTileSize, height_ - tile.y));
   if (queries_) vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
   // Make the shader writes visible to the host reads that follow the fence.
   barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
-                       nullptr, 0, nullptr);
+  vkCmdPipelineBarrier(cmd_, stage, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
   vk_check(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
 
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
@@ -184,7 +173,7 @@ FrameResult VulkanFrameRunner::run(const FrameRequest& request) {
   const ShadingInputs inputs = make_shading_inputs(*scene_, request);
   frame_.write(&inputs.frame, sizeof(inputs.frame));
 
-  // Tiles keep each dispatch within maxComputeWorkGroupCount and bound its duration. whitted in
+  // Tiles keep each launch within maxComputeWorkGroupCount and bound its duration. whitted in
   // passes runs each tile pass after pass, one ray per pixel per pass, until no pixel has rays left.
   FrameResult result;
   std::vector<glm::uvec4> tiles;

@@ -1,28 +1,26 @@
 #pragma once
 // What every Vulkan backend shares: the shading inputs (frame, materials, lights, texels, implicit
-// objects), the output
-// image + AOV buffers, tiled dispatch, timestamps and read-back. A backend adds its scene
-// buffers (bindings >= 8) and names its kernel.
-#include <array>
+// objects), the output image + AOV buffers, tiled launches, timestamps and read-back. A backend
+// adds its scene bindings (>= 8) and says how its kernel is built (tile_kernel.h).
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "renderers/renderer.h"
-#include "renderers/vulkan/compute_kernel.h"
 #include "renderers/vulkan/gpu_buffer.h"
+#include "renderers/vulkan/tile_kernel.h"
 #include "renderers/vulkan/vulkan_context.h"
 
 namespace sdfbench {
 
 class VulkanFrameRunner {
  public:
-  static constexpr uint32_t kTileSize = 256;  // pixels per side of one dispatch
+  static constexpr uint32_t kTileSize = 256;  // pixels per side of one launch
 
   // counter_kinds: the work counters the kernel counts (bit k for COUNTER kind k).
   // whitted_passes: BackendOptions::whitted_passes (unset: the device's loop cap decides).
-  VulkanFrameRunner(VulkanContext& context, std::string shader_name, uint32_t counter_kinds,
+  VulkanFrameRunner(VulkanContext& context, TileKernelFactory kernels, uint32_t counter_kinds,
                     std::optional<bool> whitted_passes);
   ~VulkanFrameRunner();
   VulkanFrameRunner(const VulkanFrameRunner&) = delete;
@@ -34,13 +32,12 @@ class VulkanFrameRunner {
 
  private:
   void prepare_outputs(uint32_t width, uint32_t height, RenderMode mode, bool counters);
-  // Records `dispatches` (tile x, y, whitted pass), submits, waits; adds the times to `result`.
-  void submit(const std::vector<glm::uvec4>& dispatches, FrameResult& result);
+  // Records `launches` (tile x, y, whitted pass), submits, waits; adds the times to `result`.
+  void submit(const std::vector<glm::uvec4>& launches, FrameResult& result);
 
   VulkanContext& context_;
-  std::string shader_name_;
+  TileKernelFactory kernels_;
   uint32_t counter_kinds_;
-  std::array<std::vector<uint32_t>, 6> spirv_;  // per RenderMode, with and without counters; compiled on first use
   const Scene* scene_ = nullptr;
   std::vector<KernelBinding> scene_bindings_;
   GpuBuffer frame_, materials_, lights_, texels_, implicit_objects_, implicit_nodes_, color_, aov_, stacks_, states_,
@@ -49,7 +46,7 @@ class VulkanFrameRunner {
   RenderMode mode_ = RenderMode::Primary;
   bool counting_ = false;
   bool whitted_passes_;  // one ray per pixel per dispatch (render_main.glsl, WHITTED_PASSES)
-  std::unique_ptr<ComputeKernel> kernel_;
+  std::unique_ptr<TileKernel> kernel_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;

@@ -1,6 +1,7 @@
-// Buffer layout of the tri-aabb backend, shared by GLSL and C++ (vec4/uvec4/mat4 only).
-#ifndef SDFBENCH_TRI_AABB_TYPES_GLSL
-#define SDFBENCH_TRI_AABB_TYPES_GLSL
+// The instance table of the triangle backends (tri-aabb, vk-rt), shared by GLSL and C++
+// (vec4/uvec4/mat4 only).
+#ifndef SDFBENCH_TRIANGLE_INSTANCE_GLSL
+#define SDFBENCH_TRIANGLE_INSTANCE_GLSL
 
 struct TriInstance {
   vec4 bounds_min;       // world-space AABB of the instance (thesis 6: "per-object AABB test")

@@ -1,0 +1,29 @@
+// The scene tables of the triangle backends (tri-aabb, vk-rt; filled by triangle_buffers.h):
+// every mesh's triangles concatenated (in the spatial order triangle_buffers.cpp gives them),
+// 3 texels per triangle, and an instance table. Texel
+// buffers: lavapipe serves divergent texel fetches far faster than divergent storage-buffer
+// reads (DESIGN.md, measured).
+#ifndef SDFBENCH_TRIANGLE_TABLES_GLSL
+#define SDFBENCH_TRIANGLE_TABLES_GLSL
+#include "triangle_instance.glsl"
+
+layout(std430, binding = 8) readonly buffer InstanceBlock { TriInstance instances[]; };
+layout(binding = 9) uniform textureBuffer tri_vertices;  // v0, v1, v2 (object space)
+layout(binding = 10) uniform textureBuffer tri_normals;  // vertex normals n0, n1, n2; n0.w: the mesh's triangle index
+
+// The hit of the instance's `slot`-th triangle in these tables at barycentrics uv: the mesh's
+// triangle index, material, world shading normal (the vertex normals interpolated, as every
+// backend does) and uv.
+void fill_triangle_hit(uint instance, uint slot, vec2 uv, float t, inout Hit hit) {
+  int base = 3 * (int(instances[instance].info.x) + int(slot));
+  vec4 n0 = texelFetch(tri_normals, base);
+  vec3 n = interpolate_barycentric(n0.xyz, texelFetch(tri_normals, base + 1).xyz, texelFetch(tri_normals, base + 2).xyz, uv);
+  hit.t = t;
+  hit.instance = instance;
+  hit.prim = floatBitsToUint(n0.w);
+  hit.material = instances[instance].info.z;
+  hit.normal = normalize(mat3(instances[instance].object_to_world) * n);
+  hit.uv = uv;
+}
+
+#endif

@@ -1,0 +1,25 @@
+#pragma once
+// The GPU tables of the triangle backends (triangle_tables.glsl, bindings 8-10): every mesh's
+// triangles concatenated (3 texels of positions and of vertex normals per triangle) and the
+// instance table. tri-aabb intersects them itself; vk-rt builds its acceleration structures from
+// the same vertex buffer and shades from the same normals.
+#include <vector>
+
+#include "renderers/vulkan/descriptor_set.h"
+#include "renderers/vulkan/gpu_buffer.h"
+#include "scenes/scene.h"
+
+namespace sdfbench {
+
+struct TriangleBuffers {
+  // extra_vertex_usage: usage flags the vertex buffer needs beyond a texel buffer (vk-rt:
+  // acceleration-structure build input, device address).
+  TriangleBuffers(const VulkanContext& context, const Scene& scene, VkBufferUsageFlags extra_vertex_usage = 0);
+
+  std::vector<KernelBinding> bindings() const;
+
+  GpuBuffer instances, vertices, normals;
+  std::vector<uint32_t> first_triangle;  // per mesh, into vertices / 3
+};
+
+}  // namespace sdfbench
