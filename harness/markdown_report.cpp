@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -98,26 +99,34 @@ void thesis_table(std::ostringstream& out, const ThesisTableConfig& config, cons
   out << "\n";
 }
 
-void speedup_table(std::ostringstream& out, const std::vector<Row>& sdf, const std::vector<Row>& tri,
-                   const ThesisTables& thesis) {
-  out << "### Speed-up of table 6.1 over table 6.3 (sdf-octree whitted FPS / tri-aabb shadow FPS)\n\n"
-         "Measured here, the thesis' ratio in brackets (its \"<1\" entries taken as 1, so its ratio is a lower bound there).\n\n";
-  const std::vector<size_t> counts = ordered_counts(sdf);
+// mesh x objects: FPS of `numerator`'s row / FPS of `denominator`'s, then `note(mesh, objects)`.
+void ratio_table(std::ostringstream& out, const std::vector<Row>& numerator, const std::vector<Row>& denominator,
+                 const std::function<std::string(const std::string&, size_t)>& note) {
+  const std::vector<size_t> counts = ordered_counts(numerator);
   header(out, "mesh \\ objects", counts);
-  for (const std::string& mesh : ordered_meshes(sdf)) {
+  for (const std::string& mesh : ordered_meshes(numerator)) {
     out << "| " << mesh << " |";
     for (size_t c : counts) {
-      const Row* a = find_row(sdf, mesh, c);
-      const Row* b = find_row(tri, mesh, c);
-      const auto ta = thesis.find("6.1", mesh, c), tb = thesis.find("6.3", mesh, c);
+      const Row* a = find_row(numerator, mesh, c);
+      const Row* b = find_row(denominator, mesh, c);
       std::string cell = a && b && b->number("fps") > 0 ? fixed(a->number("fps") / b->number("fps"), 2) + "x" : "–";
       if (a && b && (truncated(*a) || truncated(*b))) cell += " ✂";
-      if (ta && tb) cell += " (" + fixed(ta->fps / tb->fps, 0) + "x" + (tb->upper_bound ? "+" : "") + ")";
-      out << " " << cell << " |";
+      out << " " << cell << note(mesh, c) << " |";
     }
     out << "\n";
   }
   out << "\n";
+}
+
+void speedup_table(std::ostringstream& out, const std::vector<Row>& sdf, const std::vector<Row>& tri,
+                   const ThesisTables& thesis) {
+  out << "### Speed-up of table 6.1 over table 6.3 (sdf-octree whitted FPS / tri-aabb shadow FPS)\n\n"
+         "Measured here, the thesis' ratio in brackets (its \"<1\" entries taken as 1, so its ratio is a lower bound there).\n\n";
+  ratio_table(out, sdf, tri, [&](const std::string& mesh, size_t c) -> std::string {
+    const auto ta = thesis.find("6.1", mesh, c), tb = thesis.find("6.3", mesh, c);
+    if (!ta || !tb) return "";
+    return " (" + fixed(ta->fps / tb->fps, 0) + "x" + (tb->upper_bound ? "+" : "") + ")";
+  });
 }
 
 // The thesis' structure against the driver's BVH on the same device, in one mode: sdf-octree
@@ -132,20 +141,7 @@ void driver_bvh_table(std::ostringstream& out, const std::string& mode, const st
   if (sdf.empty() || rt.empty()) return;
   out << "### sdf-octree against the driver's BVH, " << mode << " mode (sdf-octree FPS / vk-rt FPS, " << sizes_of(rows)
       << ")\n\n";
-  const std::vector<size_t> counts = ordered_counts(sdf);
-  header(out, "mesh \\ objects", counts);
-  for (const std::string& mesh : ordered_meshes(sdf)) {
-    out << "| " << mesh << " |";
-    for (size_t c : counts) {
-      const Row* a = find_row(sdf, mesh, c);
-      const Row* b = find_row(rt, mesh, c);
-      std::string cell = a && b && b->number("fps") > 0 ? fixed(a->number("fps") / b->number("fps"), 2) + "x" : "–";
-      if (a && b && (truncated(*a) || truncated(*b))) cell += " ✂";
-      out << " " << cell << " |";
-    }
-    out << "\n";
-  }
-  out << "\n";
+  ratio_table(out, sdf, rt, [](const std::string&, size_t) { return std::string(); });
 }
 
 void backends_table(std::ostringstream& out, const std::string& mode, const std::vector<Row>& rows) {

@@ -5,15 +5,12 @@
 #include "renderers/renderer.h"
 #include "renderers/shading/gpu_types.h"
 #include "scenes/thesis_layout.h"
+#include "tests/test_support.h"
 
 namespace sdfbench {
 namespace {
 
-FrameImages render_frame(const std::string& backend, const Scene& scene, RenderMode mode, uint32_t w, uint32_t h) {
-  auto renderer = create_renderer(backend, BackendOptions{});
-  renderer->prepare(scene);
-  return renderer->render(FrameRequest{w, h, mode, true}).images;
-}
+using test::render_frame;
 
 struct AgreementCase {
   const char* mesh;

@@ -131,6 +131,8 @@ CsvTable rows_for_markdown() {
   add("6.1", "bunny", 100, "sdf-octree", "whitted", 2, "ok", false);
   add("6.3", "bunny", 100, "tri-aabb", "shadow", 40, "TRUNCATED: 200 pixels", false);
   add("", "bunny", 1, "embree", "shadow", 300, "reference", false);
+  add("", "bunny", 1, "vk-rt", "whitted", 5, "ok", false);
+  add("", "bunny", 10, "vk-rt", "whitted", 0, "ERROR: vk-rt: device 'x' lacks VK_KHR_ray_tracing_pipeline", false);
   return t;
 }
 
@@ -145,6 +147,10 @@ TEST(MarkdownReport, LaysOutThesisTablesWithThesisValuesAndFlags) {
   EXPECT_NE(md.find("| bunny | 5.00x (42x) | 8.50x (100x) | 0.05x ✂ ("), std::string::npos) << md;
   EXPECT_NE(md.find("### Every backend, shadow mode"), std::string::npos) << md;
   EXPECT_EQ(md.find("6.2"), std::string::npos) << "no rows for table 6.2, so no such table";
+  // sdf-octree against vk-rt in whitted mode: 12.5 / 5; the ERROR row gives no ratio.
+  EXPECT_NE(md.find("### sdf-octree against the driver's BVH, whitted mode"), std::string::npos) << md;
+  EXPECT_NE(md.find("| bunny | 2.50x | – | – |"), std::string::npos) << md;
+  EXPECT_EQ(md.find("driver's BVH, shadow mode"), std::string::npos) << "no vk-rt rows in shadow mode";
 }
 
 // A small sweep on the CPU backends (sdf-cpu vs the Embree reference), 4 configurations.

@@ -10,6 +10,7 @@
 #include "renderers/shading/cpu_shading.h"
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
+#include "tests/test_support.h"
 
 namespace sdfbench {
 namespace {
@@ -197,9 +198,7 @@ TEST(ImplicitBounds, FollowTheTree) {
 }
 
 FrameImages render(const std::string& backend, const Scene& scene, RenderMode mode, uint32_t w, uint32_t h) {
-  auto renderer = create_renderer(backend, BackendOptions{});
-  renderer->prepare(scene);
-  return renderer->render(FrameRequest{w, h, mode, true}).images;
+  return test::render_frame(backend, scene, mode, w, h);
 }
 
 // A camera on +z looking at the origin, nothing but implicit objects.

@@ -48,4 +48,11 @@ CommandResult run_shell(const std::string& shell_command, int seconds) {
 
 CommandResult run_sdfbench(const std::string& args) { return run_command(std::string(SDFBENCH_BINARY) + " " + args); }
 
+FrameImages render_frame(const std::string& backend, const Scene& scene, RenderMode mode, uint32_t width,
+                         uint32_t height) {
+  auto renderer = create_renderer(backend, BackendOptions{});
+  renderer->prepare(scene);
+  return renderer->render(FrameRequest{width, height, mode, true}).images;
+}
+
 }  // namespace sdfbench::test

@@ -2,6 +2,8 @@
 #include <filesystem>
 #include <string>
 
+#include "renderers/renderer.h"
+
 namespace sdfbench::test {
 
 // A fresh directory under the system temp dir, removed when the object dies.
@@ -30,5 +32,9 @@ CommandResult run_shell(const std::string& shell_command, int seconds = 60);
 
 // Runs the sdfbench binary with `args` (a shell-quoted string).
 CommandResult run_sdfbench(const std::string& args);
+
+// One frame of `scene` by `backend` with default options, read back.
+FrameImages render_frame(const std::string& backend, const Scene& scene, RenderMode mode, uint32_t width,
+                         uint32_t height);
 
 }  // namespace sdfbench::test

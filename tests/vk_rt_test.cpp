@@ -19,11 +19,7 @@
 namespace sdfbench {
 namespace {
 
-FrameImages render_frame(const std::string& backend, const Scene& scene, RenderMode mode, uint32_t w, uint32_t h) {
-  auto renderer = create_renderer(backend, BackendOptions{});
-  renderer->prepare(scene);
-  return renderer->render(FrameRequest{w, h, mode, true}).images;
-}
+using test::render_frame;
 
 // The acceptance thresholds of the issue: hit and id >= 99.9 %, PSNR >= 45 dB.
 void expect_agrees_with_embree(const Scene& scene, RenderMode mode, uint32_t w, uint32_t h) {
