@@ -128,7 +128,7 @@ void register_render_command(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene with one backend; print timings, write image and AOVs");
   cmd->add_option("--scene", args->scene, "scene descriptor (.json) or generator, e.g. thesis:bunny:100[:seed]")->required();
-  cmd->add_option("--backend", args->backend, "embree | tri-aabb | vk-rt | sdf-hash | sdf-octree | sdf-cpu")->required();
+  cmd->add_option("--backend", args->backend, "embree | tri-aabb | bvh | vk-rt | sdf-hash | sdf-octree | sdf-cpu")->required();
   add_mode_options(*cmd, args->mode, args->max_depth);
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT (default: the scene's render size)");
   cmd->add_option("--frames", args->frames, "timed frames")->capture_default_str()->check(CLI::Range(1u, 100000u));

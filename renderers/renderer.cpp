@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <thread>
 
+#include "renderers/bvh/bvh_renderer.h"
 #include "renderers/embree/embree_renderer.h"
 #include "renderers/sdf/sdf_cpu_renderer.h"
 #include "renderers/sdf_vk/sdf_vk_renderer.h"
@@ -30,7 +31,7 @@ std::string to_string(RenderMode mode) {
 }
 
 const std::vector<std::string>& backend_names() {
-  static const std::vector<std::string> names = {"embree", "tri-aabb", "vk-rt", "sdf-hash", "sdf-octree", "sdf-cpu"};
+  static const std::vector<std::string> names = {"embree", "tri-aabb", "bvh", "vk-rt", "sdf-hash", "sdf-octree", "sdf-cpu"};
   return names;
 }
 
@@ -40,6 +41,7 @@ std::unique_ptr<Renderer> create_renderer(const std::string& name, const Backend
   if (name == "embree") return std::make_unique<EmbreeRenderer>(options);
   if (name == "tri-aabb") return std::make_unique<TriAabbRenderer>(options);
   if (name == "vk-rt") return std::make_unique<VkRtRenderer>(options);
+  if (name == "bvh") return std::make_unique<BvhRenderer>(options);
   if (name == "sdf-hash" || name == "sdf-octree") return std::make_unique<SdfVkRenderer>(name, options);
   if (name == "sdf-cpu") return std::make_unique<SdfCpuRenderer>(options);
   check_backend_name(name);
@@ -65,6 +67,9 @@ sdf::SceneHashParams scene_hash_params_for(const std::string& backend, const Bac
 
 std::string truncation_error(const std::string& backend, const FrameResult& frame) {
   if (frame.truncated_pixels == 0) return "";
+  if (backend == "bvh")
+    return backend + ": the traversal stack overflowed on " + std::to_string(frame.truncated_pixels) +
+           " pixels: the image and timing are invalid";
   return backend + ": lavapipe's loop limit (65535 iterations per invocation) cut " +
          std::to_string(frame.truncated_pixels) + " pixels short: the image and timing are invalid";
 }

@@ -42,6 +42,19 @@ TEST(VulkanValidation, VkRtRendersWithoutValidationMessages) {
   }
 }
 
+TEST(VulkanValidation, BvhRendersWithoutValidationMessages) {
+  BackendOptions options;
+  options.validation = true;
+  auto renderer = create_renderer("bvh", options);
+  const Scene scene = make_thesis_scene({"teapot", 10, 1});
+  renderer->prepare(scene);
+  for (RenderMode mode : {RenderMode::Primary, RenderMode::Shadow, RenderMode::Whitted}) {
+    renderer->render(FrameRequest{64, 36, mode, true});
+    renderer->render(FrameRequest{300, 20, mode, false, std::nullopt, true});  // another size, counters
+  }
+  EXPECT_EQ(renderer->validation_messages(), 0u);
+}
+
 TEST(VulkanValidation, NegativeControlInvalidUsageIsCounted) {
   VulkanContext context(VulkanContext::Options{"lavapipe", true});
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};

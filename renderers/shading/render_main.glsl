@@ -65,6 +65,12 @@ bool has_implicits() {
 
 #include "shading.glsl"
 
+// A backend whose traversal can run out of a fixed resource (bvh: its stacks) defines
+// TRAVERSAL_OVERFLOW as that flag: the pixel is then counted as cut short, never silently wrong.
+#ifndef TRAVERSAL_OVERFLOW
+#define TRAVERSAL_OVERFLOW false
+#endif
+
 // lavapipe (Mesa 22.3) gives an invocation 65535 loop iterations in all, then silently ends every
 // loop at its first check. A loop of push.tile.w = 2 iterations, a run-time count the compiler
 // cannot unroll, that stops short says this invocation ran out: its pixel is cut short.
@@ -110,7 +116,7 @@ void main() {
   trace_ray(ray, s, aov);
   if (SHADING_MODE == MODE_WHITTED && WHITTED_PASSES == 0)
     while (s.counters.x > 0u) trace_ray(pop_ray(s), s, aov);
-  bool cut = loop_limit_hit();
+  bool cut = loop_limit_hit() || TRAVERSAL_OVERFLOW;
   if (first) {
     out_aov[index].normal_depth = vec4(aov.normal, aov.depth);
     out_aov[index].ids = uvec4(aov.instance, aov.prim, 0u, cut ? 1u : 0u);

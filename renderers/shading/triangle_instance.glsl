@@ -8,7 +8,8 @@ struct TriInstance {
   vec4 bounds_max;
   mat4 world_to_object;  // rays are intersected in the mesh's frame: meshes are shared
   mat4 object_to_world;  // rotation + uniform scale + translation; normals use its 3x3 part
-  uvec4 info;            // x: first triangle in the triangle texel buffers, y: triangle count, z: material
+  uvec4 info;            // x: first triangle in the triangle texel buffers, y: their count, z: material,
+                         // w: bvh: the root of the mesh's BVH
 };
 
 #endif

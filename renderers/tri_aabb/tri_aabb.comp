@@ -7,12 +7,6 @@
 
 #include "frame_bindings.glsl"
 #include "triangle_tables.glsl"
-#include "ray_triangle.glsl"
-
-vec3 safe_inverse(vec3 d) {
-  const float tiny = 1e-30f;
-  return vec3(1.0f) / vec3(abs(d.x) > tiny ? d.x : tiny, abs(d.y) > tiny ? d.y : tiny, abs(d.z) > tiny ? d.z : tiny);
-}
 
 // Slab test: does the ray enter the box before tmax?
 bool hits_box(vec3 origin, vec3 inv_dir, vec3 box_min, vec3 box_max, float tmax) {
@@ -24,14 +18,6 @@ bool hits_box(vec3 origin, vec3 inv_dir, vec3 box_min, vec3 box_max, float tmax)
   float enter = max(max(lo.x, lo.y), max(lo.z, 0.0f));
   float leave = min(min(hi.x, hi.y), min(hi.z, tmax));
   return enter <= leave;
-}
-
-// t in (0, tmax).
-bool hits_triangle(vec3 o, vec3 d, int base, float tmax, out float t, out vec2 uv) {
-  COUNT(COUNTER_TRIANGLE_TESTS, 1u);
-  return ray_triangle(o, d, texelFetch(tri_vertices, base).xyz, texelFetch(tri_vertices, base + 1).xyz,
-                      texelFetch(tri_vertices, base + 2).xyz, t, uv) &&
-         t > 0.0f && t < tmax;
 }
 
 bool closest_hit(Ray ray, float tmax, out Hit hit) {

@@ -38,11 +38,15 @@ std::vector<uint32_t> spatial_order(const Mesh& mesh) {
 
 }  // namespace
 
-TriangleBuffers::TriangleBuffers(const VulkanContext& context, const Scene& scene, VkBufferUsageFlags extra_vertex_usage) {
+TriangleBuffers::TriangleBuffers(const VulkanContext& context, const Scene& scene, VkBufferUsageFlags extra_vertex_usage,
+                                 const TriangleLayout* layout) {
   std::vector<glm::vec4> vertex_data, normal_data;
-  for (const Mesh& mesh : scene.meshes) {
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
     first_triangle.push_back(static_cast<uint32_t>(vertex_data.size() / 3));
-    for (uint32_t triangle : spatial_order(mesh)) {
+    const std::vector<uint32_t> order = layout ? layout->triangles.at(m) : spatial_order(mesh);
+    triangle_count.push_back(static_cast<uint32_t>(order.size()));
+    for (uint32_t triangle : order) {
       const glm::uvec3& t = mesh.triangles[triangle];
       for (int k = 0; k < 3; ++k) {
         vertex_data.emplace_back(mesh.positions[t[k]], 1.0f);
@@ -59,7 +63,8 @@ TriangleBuffers::TriangleBuffers(const VulkanContext& context, const Scene& scen
     g.bounds_max = glm::vec4(bounds.max, 0.0f);
     g.world_to_object = instance.transform.world_to_object();
     g.object_to_world = instance.transform.object_to_world();
-    g.info = glm::uvec4(first_triangle[instance.mesh], scene.meshes[instance.mesh].triangle_count(), instance.material, 0u);
+    g.info = glm::uvec4(first_triangle[instance.mesh], triangle_count[instance.mesh], instance.material,
+                        layout ? layout->roots.at(instance.mesh) : 0u);
     instance_data.push_back(g);
   }
   const VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;

@@ -1,0 +1,51 @@
+#pragma once
+#include <memory>
+
+#include <embree3/rtcore.h>
+
+#include "renderers/renderer.h"
+#include "renderers/vulkan/gpu_buffer.h"
+#include "renderers/vulkan/triangle_buffers.h"
+#include "renderers/vulkan/vulkan_context.h"
+#include "renderers/vulkan/vulkan_frame_runner.h"
+
+namespace sdfbench {
+
+// A two-level BVH traced in a Vulkan compute kernel (bvh.comp): the fair triangle baseline for the
+// SDF structures, run the way they are run, on the same device. Built on the CPU by Embree's BVH
+// builder (bvh_builder.h).
+class BvhRenderer : public Renderer {
+ public:
+  explicit BvhRenderer(const BackendOptions& options);
+  ~BvhRenderer() override;
+  std::string name() const override { return "bvh"; }
+  std::string device_name() const override { return context_.info().name; }
+  std::string driver_name() const override { return context_.info().driver + " " + context_.info().driver_info; }
+  void prepare(const Scene& scene) override;
+  FrameResult render(const FrameRequest& request) override { return runner_.run(request); }
+  uint32_t validation_messages() const override { return context_.validation_messages(); }
+  std::optional<StructureStats> structure_stats() const override { return stats_; }
+  // Inner-node depths of the prepared scene's BVHs: the instances' and the deepest mesh's. The
+  // traversal stack holds as many entries per level as the deeper of the two.
+  struct Depths {
+    uint32_t top = 0, meshes = 0;
+  };
+  Depths depths() const { return depths_; }
+  // For tests: a stack of `entries` (fewer than the BVH needs) from the next prepare on, to show
+  // that an overflow is reported (as cut pixels), never a silent miss. 0: as deep as the BVH.
+  void limit_stack_for_testing(uint32_t entries) { stack_limit_ = entries; }
+
+ private:
+  VulkanContext context_;
+  RTCDevice embree_ = nullptr;  // for its BVH builder only
+  std::unique_ptr<TriangleBuffers> tables_;
+  GpuBuffer mesh_nodes_, top_nodes_;
+  std::optional<StructureStats> stats_;
+  Depths depths_;
+  uint32_t stack_size_ = 1;
+  uint32_t stack_limit_ = 0;
+  TileKernelFactory kernels_;  // bvh.comp; the runner's factory adds BVH_STACK_SIZE
+  VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
+};
+
+}  // namespace sdfbench
