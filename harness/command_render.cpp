@@ -39,7 +39,7 @@ void report_counters(const RenderArgs& args, Renderer& renderer, FrameRequest re
     line += std::string(line.empty() ? "" : ", ") + names[k] + " " + value;
   }
   if (line.empty())
-    std::cout << "counters n/a: " << args.backend << " does not expose its traversal work (Embree has no counters)\n";
+    std::cout << "counters n/a: " << args.backend << " does not expose its traversal work (Embree's and the driver's are opaque)\n";
   else
     std::cout << "counters per ray (" << frame.rays << " rays, untimed instrumented frame): " << line << "\n";
   if (!args.heatmap.empty()) {
