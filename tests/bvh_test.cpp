@@ -23,45 +23,17 @@ namespace {
 using test::render_frame;
 
 void expect_agrees_with_embree(const Scene& scene, RenderMode mode, uint32_t w, uint32_t h) {
-  const FrameImages reference = render_frame("embree", scene, mode, w, h);
-  const FrameImages images = render_frame("bvh", scene, mode, w, h);
-  size_t instance_pixels = 0, same_triangle = 0, same_instance = 0;
-  for (size_t i = 0; i < reference.instance_id.size(); ++i) {
-    instance_pixels += reference.instance_id[i] < shading::FLOOR_INSTANCE_VALUE;
-    if (images.instance_id[i] == reference.instance_id[i] && reference.instance_id[i] < shading::FLOOR_INSTANCE_VALUE) {
-      ++same_instance;
-      same_triangle += images.primitive_id[i] == reference.primitive_id[i];
-    }
-  }
-  EXPECT_GT(instance_pixels, 0u) << "the frame shows no instance";
-  const Agreement g = compare_frames(images, reference);
-  EXPECT_GE(g.hit_percent, 99.9);
-  EXPECT_GE(g.id_percent, 99.9);
-  EXPECT_LE(g.depth_p99, 1e-4);
-  EXPECT_GE(g.psnr, 45.0);
-  EXPECT_GE(static_cast<double>(same_triangle), 0.999 * static_cast<double>(same_instance));
+  test::expect_agrees_with_embree("bvh", scene, mode, w, h);
 }
 
-struct MeshMode {
-  const char* mesh;
-  RenderMode mode;
-};
-
-class BvhVsEmbree : public testing::TestWithParam<MeshMode> {};
+class BvhVsEmbree : public testing::TestWithParam<test::MeshMode> {};
 
 TEST_P(BvhVsEmbree, ImagesAgree) {
   expect_agrees_with_embree(make_thesis_scene({GetParam().mesh, 30, 1}), GetParam().mode, 96, 54);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    ThesisMeshes, BvhVsEmbree,
-    testing::Values(MeshMode{"bunny", RenderMode::Primary}, MeshMode{"bunny", RenderMode::Shadow},
-                    MeshMode{"bunny", RenderMode::Whitted}, MeshMode{"teapot", RenderMode::Primary},
-                    MeshMode{"teapot", RenderMode::Shadow}, MeshMode{"teapot", RenderMode::Whitted},
-                    MeshMode{"monkey", RenderMode::Primary}, MeshMode{"monkey", RenderMode::Shadow},
-                    MeshMode{"monkey", RenderMode::Whitted}, MeshMode{"sphere", RenderMode::Primary},
-                    MeshMode{"sphere", RenderMode::Shadow}, MeshMode{"sphere", RenderMode::Whitted}),
-    [](const auto& info) { return std::string(info.param.mesh) + "_" + to_string(info.param.mode); });
+INSTANTIATE_TEST_SUITE_P(ThesisMeshes, BvhVsEmbree, testing::ValuesIn(test::thesis_meshes_in_every_mode()),
+                         [](const auto& info) { return test::mesh_mode_name(info.param); });
 
 TEST(Bvh, RotatedScaledInstancesAgreeWithEmbree) {
   Scene scene = make_thesis_scene({"bunny", 6, 3});

@@ -1,5 +1,10 @@
 #include "tests/test_support.h"
 
+#include <gtest/gtest.h>
+
+#include "harness/image_agreement.h"
+#include "renderers/shading/gpu_types.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -54,5 +59,36 @@ FrameImages render_frame(const std::string& backend, const Scene& scene, RenderM
   renderer->prepare(scene);
   return renderer->render(FrameRequest{width, height, mode, true}).images;
 }
+
+void expect_agrees_with_embree(const std::string& backend, const Scene& scene, RenderMode mode, uint32_t width,
+                               uint32_t height) {
+  const FrameImages reference = render_frame("embree", scene, mode, width, height);
+  const FrameImages images = render_frame(backend, scene, mode, width, height);
+  size_t instance_pixels = 0, same_instance = 0, same_triangle = 0;
+  for (size_t i = 0; i < reference.instance_id.size(); ++i) {
+    const bool instance = reference.instance_id[i] < shading::FLOOR_INSTANCE_VALUE;
+    instance_pixels += instance;
+    if (instance && images.instance_id[i] == reference.instance_id[i]) {
+      ++same_instance;
+      same_triangle += images.primitive_id[i] == reference.primitive_id[i];
+    }
+  }
+  EXPECT_GT(instance_pixels, 0u) << "the frame shows no instance";
+  const Agreement g = compare_frames(images, reference);
+  EXPECT_GE(g.hit_percent, 99.9) << backend;
+  EXPECT_GE(g.id_percent, 99.9) << backend;
+  EXPECT_LE(g.depth_p99, 1e-4) << backend;
+  EXPECT_GE(g.psnr, 45.0) << backend;
+  EXPECT_GE(static_cast<double>(same_triangle), 0.999 * static_cast<double>(same_instance)) << backend;
+}
+
+std::vector<MeshMode> thesis_meshes_in_every_mode() {
+  std::vector<MeshMode> cases;
+  for (const char* mesh : {"bunny", "teapot", "monkey", "sphere"})
+    for (RenderMode mode : {RenderMode::Primary, RenderMode::Shadow, RenderMode::Whitted}) cases.push_back({mesh, mode});
+  return cases;
+}
+
+std::string mesh_mode_name(const MeshMode& m) { return std::string(m.mesh) + "_" + to_string(m.mode); }
 
 }  // namespace sdfbench::test

@@ -23,47 +23,17 @@ using test::render_frame;
 
 // The acceptance thresholds of the issue: hit and id >= 99.9 %, PSNR >= 45 dB.
 void expect_agrees_with_embree(const Scene& scene, RenderMode mode, uint32_t w, uint32_t h) {
-  const FrameImages reference = render_frame("embree", scene, mode, w, h);
-  const FrameImages images = render_frame("vk-rt", scene, mode, w, h);
-  size_t instance_pixels = 0;
-  for (uint32_t id : reference.instance_id) instance_pixels += id < shading::FLOOR_INSTANCE_VALUE;
-  EXPECT_GT(instance_pixels, 0u) << "the frame shows no instance";
-  const Agreement g = compare_frames(images, reference);
-  EXPECT_GE(g.hit_percent, 99.9);
-  EXPECT_GE(g.id_percent, 99.9);
-  EXPECT_LE(g.depth_p99, 1e-4);
-  EXPECT_GE(g.psnr, 45.0);
-  // The primitive ids come back in the mesh's own numbering (the tables hold triangles in
-  // Morton order): where both hit the same instance, the same triangle.
-  size_t same = 0, both = 0;
-  for (size_t i = 0; i < images.instance_id.size(); ++i)
-    if (images.instance_id[i] == reference.instance_id[i] && reference.instance_id[i] < shading::FLOOR_INSTANCE_VALUE) {
-      ++both;
-      same += images.primitive_id[i] == reference.primitive_id[i];
-    }
-  EXPECT_GE(static_cast<double>(same), 0.999 * static_cast<double>(both));
+  test::expect_agrees_with_embree("vk-rt", scene, mode, w, h);
 }
 
-struct MeshMode {
-  const char* mesh;
-  RenderMode mode;
-};
-
-class VkRtVsEmbree : public testing::TestWithParam<MeshMode> {};
+class VkRtVsEmbree : public testing::TestWithParam<test::MeshMode> {};
 
 TEST_P(VkRtVsEmbree, ImagesAgree) {
   expect_agrees_with_embree(make_thesis_scene({GetParam().mesh, 30, 1}), GetParam().mode, 96, 54);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    ThesisMeshes, VkRtVsEmbree,
-    testing::Values(MeshMode{"bunny", RenderMode::Primary}, MeshMode{"bunny", RenderMode::Shadow},
-                    MeshMode{"bunny", RenderMode::Whitted}, MeshMode{"teapot", RenderMode::Primary},
-                    MeshMode{"teapot", RenderMode::Shadow}, MeshMode{"teapot", RenderMode::Whitted},
-                    MeshMode{"monkey", RenderMode::Primary}, MeshMode{"monkey", RenderMode::Shadow},
-                    MeshMode{"monkey", RenderMode::Whitted}, MeshMode{"sphere", RenderMode::Primary},
-                    MeshMode{"sphere", RenderMode::Shadow}, MeshMode{"sphere", RenderMode::Whitted}),
-    [](const auto& info) { return std::string(info.param.mesh) + "_" + to_string(info.param.mode); });
+INSTANTIATE_TEST_SUITE_P(ThesisMeshes, VkRtVsEmbree, testing::ValuesIn(test::thesis_meshes_in_every_mode()),
+                         [](const auto& info) { return test::mesh_mode_name(info.param); });
 
 // Rotated and scaled instances: the top level's 3x4 transforms must be the scene's.
 TEST(VkRt, RotatedScaledInstancesAgreeWithEmbree) {
