@@ -95,11 +95,7 @@ TEST(BvhBuilder, LeavesCoverEveryPrimitive) {
   for (size_t i = 0; i < boxes.size(); ++i)
     for (int k = 0; k < 3; ++k) boxes[i].extend(mesh.positions[mesh.triangles[i][k]]);
   for (bool splits : {false, true}) {
-    const SplitPrimitive split = [&](uint32_t id, const Aabb& part, unsigned dim, float pos, Aabb& l, Aabb& r) {
-      const glm::uvec3& t = mesh.triangles[id];
-      split_triangle(mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z], part, dim, pos, l, r);
-    };
-    const FlatBvh bvh = build_bvh(device, boxes, BvhBuildParams{}, splits ? split : SplitPrimitive{});
+    const FlatBvh bvh = splits ? build_mesh_bvh(device, mesh, BvhBuildParams{}) : build_bvh(device, boxes, BvhBuildParams{});
     std::set<uint32_t> seen(bvh.references.begin(), bvh.references.end());
     EXPECT_EQ(seen.size(), boxes.size()) << "splits " << splits;
     if (!splits) {

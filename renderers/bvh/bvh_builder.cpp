@@ -1,7 +1,6 @@
 #include "renderers/bvh/bvh_builder.h"
 
 #include <algorithm>
-#include <cstring>
 #include <limits>
 #include <string>
 
@@ -67,12 +66,6 @@ void split_primitive(const RTCBuildPrimitive* primitive, unsigned dimension, flo
   *right = {r.min.x, r.min.y, r.min.z, 0.0f, r.max.x, r.max.y, r.max.z, 0.0f};
 }
 
-float as_float(uint32_t value) {
-  float f;
-  static_assert(sizeof f == sizeof value);
-  std::memcpy(&f, &value, sizeof f);
-  return f;
-}
 
 // Depth-first: a node, then its left subtree, then its right.
 class Flattener {
@@ -86,8 +79,8 @@ class Flattener {
     out_.nodes.emplace_back();
     const Child l = child(node->children[0], node->bounds[0], depth);
     const Child r = child(node->children[1], node->bounds[1], depth);
-    out_.nodes[index] = BvhNode{glm::vec4(l.box.min, as_float(l.index)), glm::vec4(l.box.max, as_float(r.index)),
-                                glm::vec4(r.box.min, as_float(l.count)), glm::vec4(r.box.max, as_float(r.count))};
+    out_.nodes[index] = BvhNode{glm::vec4(l.box.min, glm::uintBitsToFloat(l.index)), glm::vec4(l.box.max, glm::uintBitsToFloat(r.index)),
+                                glm::vec4(r.box.min, glm::uintBitsToFloat(l.count)), glm::vec4(r.box.max, glm::uintBitsToFloat(r.count))};
     return index;
   }
 
@@ -206,6 +199,17 @@ FlatBvh build_bvh(RTCDevice device, const std::vector<Aabb>& boxes, const BvhBui
   }
   rtcReleaseBVH(bvh);
   return flat;
+}
+
+FlatBvh build_mesh_bvh(RTCDevice device, const Mesh& mesh, const BvhBuildParams& params) {
+  std::vector<Aabb> boxes(mesh.triangles.size());
+  for (size_t i = 0; i < boxes.size(); ++i)
+    for (int k = 0; k < 3; ++k) boxes[i].extend(mesh.positions[mesh.triangles[i][k]]);
+  const SplitPrimitive split = [&mesh](uint32_t id, const Aabb& part, unsigned dim, float pos, Aabb& l, Aabb& r) {
+    const glm::uvec3& t = mesh.triangles[id];
+    split_triangle(mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z], part, dim, pos, l, r);
+  };
+  return build_bvh(device, boxes, params, split);
 }
 
 }  // namespace sdfbench

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "scenes/aabb.h"
+#include "scenes/mesh.h"
 
 namespace sdfbench {
 
@@ -54,5 +55,8 @@ FlatBvh build_bvh(RTCDevice device, const std::vector<Aabb>& boxes, const BvhBui
 // Spatial splits of triangles: the bounds of the triangle's part on either side, within `part`.
 void split_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Aabb& part, unsigned dimension,
                     float position, Aabb& left, Aabb& right);
+
+// A mesh's BVH over its triangles, split spatially (the mesh must outlive the call only).
+FlatBvh build_mesh_bvh(RTCDevice device, const Mesh& mesh, const BvhBuildParams& params);
 
 }  // namespace sdfbench

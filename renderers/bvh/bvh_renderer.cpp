@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 
 #include "renderers/bvh/bvh_builder.h"
 #include "scenes/error.h"
@@ -16,27 +15,15 @@ namespace {
 BvhBuildParams mesh_params() { return BvhBuildParams{RTC_BUILD_QUALITY_HIGH, 4}; }
 BvhBuildParams top_params() { return BvhBuildParams{RTC_BUILD_QUALITY_MEDIUM, 1}; }
 
-uint32_t as_uint(float f) {
-  uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  return u;
-}
-
-float as_float(uint32_t u) {
-  float f;
-  std::memcpy(&f, &u, sizeof f);
-  return f;
-}
-
 // Applies `f(child, count)` to both children of every node (the w components of BvhNode).
 template <typename F>
 void for_each_child(std::vector<BvhNode>& nodes, F f) {
   for (BvhNode& n : nodes) {
-    uint32_t left = as_uint(n.left_min.w), right = as_uint(n.left_max.w);
-    f(left, as_uint(n.right_min.w));
-    f(right, as_uint(n.right_max.w));
-    n.left_min.w = as_float(left);
-    n.left_max.w = as_float(right);
+    uint32_t left = glm::floatBitsToUint(n.left_min.w), right = glm::floatBitsToUint(n.left_max.w);
+    f(left, glm::floatBitsToUint(n.right_min.w));
+    f(right, glm::floatBitsToUint(n.right_max.w));
+    n.left_min.w = glm::uintBitsToFloat(left);
+    n.left_max.w = glm::uintBitsToFloat(right);
   }
 }
 
@@ -79,14 +66,7 @@ void BvhRenderer::prepare(const Scene& scene) {
   std::vector<BvhNode> mesh_nodes;
   Depths depths;
   for (const Mesh& mesh : scene.meshes) {
-    std::vector<Aabb> boxes(mesh.triangles.size());
-    for (size_t i = 0; i < boxes.size(); ++i)
-      for (int k = 0; k < 3; ++k) boxes[i].extend(mesh.positions[mesh.triangles[i][k]]);
-    const SplitPrimitive split = [&mesh](uint32_t id, const Aabb& part, unsigned dim, float pos, Aabb& l, Aabb& r) {
-      const glm::uvec3& t = mesh.triangles[id];
-      split_triangle(mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z], part, dim, pos, l, r);
-    };
-    FlatBvh bvh = build_bvh(embree_, boxes, mesh_params(), split);
+    FlatBvh bvh = build_mesh_bvh(embree_, mesh, mesh_params());
     check_depth(bvh, mesh_params(), "mesh '" + mesh.name + "'");
     depths.meshes = std::max(depths.meshes, bvh.depth);
     const uint32_t root = static_cast<uint32_t>(mesh_nodes.size());

@@ -14,7 +14,6 @@ namespace {
 constexpr VkBufferUsageFlags kAddressable = VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
 constexpr uint32_t kMaxCustomIndex = 1u << 24;  // instanceCustomIndex has 24 bits
 
-VkDeviceSize align_up(VkDeviceSize value, VkDeviceSize alignment) { return (value + alignment - 1) / alignment * alignment; }
 
 // Makes acceleration-structure writes (build, copy) visible to what reads them next: a later
 // build or copy, or the ray-tracing shaders.

@@ -3,6 +3,7 @@
 #include <map>
 #include <memory>
 
+#include "renderers/vulkan/compute_kernel.h"
 #include "renderers/vulkan/shader_compiler.h"
 #include "renderers/vulkan/vk_error.h"
 
@@ -11,7 +12,6 @@ namespace {
 
 constexpr VkShaderStageFlags kRaygen = VK_SHADER_STAGE_RAYGEN_BIT_KHR;
 
-VkDeviceSize align_up(VkDeviceSize value, VkDeviceSize alignment) { return (value + alignment - 1) / alignment * alignment; }
 
 }  // namespace
 
@@ -37,15 +37,10 @@ RayTracingKernel::RayTracingKernel(const VulkanContext& context, const RayTracin
                                            VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR};
     std::vector<VkPipelineShaderStageCreateInfo> stages;
     for (size_t i = 0; i < code.size(); ++i) {
-      VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-      module_info.codeSize = code[i]->size() * sizeof(uint32_t);
-      module_info.pCode = code[i]->data();
-      VkShaderModule module = VK_NULL_HANDLE;
-      vk_check(vkCreateShaderModule(device, &module_info, nullptr, &module), "vkCreateShaderModule");
-      modules.push_back(module);
+      modules.push_back(create_shader_module(device, *code[i]));
       VkPipelineShaderStageCreateInfo stage{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
       stage.stage = kinds[i];
-      stage.module = module;
+      stage.module = modules.back();
       stage.pName = "main";
       stages.push_back(stage);
     }

@@ -4,6 +4,15 @@
 
 namespace sdfbench {
 
+VkShaderModule create_shader_module(VkDevice device, const std::vector<uint32_t>& spirv) {
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = spirv.size() * sizeof(uint32_t);
+  info.pCode = spirv.data();
+  VkShaderModule module = VK_NULL_HANDLE;
+  vk_check(vkCreateShaderModule(device, &info, nullptr, &module), "vkCreateShaderModule");
+  return module;
+}
+
 ComputeKernel::ComputeKernel(const VulkanContext& context, const std::vector<uint32_t>& spirv,
                              const std::vector<KernelBinding>& bindings, uint32_t push_constant_bytes)
     : context_(context), descriptors_(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT) {
@@ -18,11 +27,7 @@ ComputeKernel::ComputeKernel(const VulkanContext& context, const std::vector<uin
     layout_info.pPushConstantRanges = &range;
     vk_check(vkCreatePipelineLayout(device, &layout_info, nullptr, &pipeline_layout_), "vkCreatePipelineLayout");
 
-    VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    module_info.codeSize = spirv.size() * sizeof(uint32_t);
-    module_info.pCode = spirv.data();
-    VkShaderModule module = VK_NULL_HANDLE;
-    vk_check(vkCreateShaderModule(device, &module_info, nullptr, &module), "vkCreateShaderModule");
+    VkShaderModule module = create_shader_module(device, spirv);
     VkComputePipelineCreateInfo pipeline_info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     pipeline_info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;

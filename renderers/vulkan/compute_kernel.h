@@ -10,6 +10,9 @@
 
 namespace sdfbench {
 
+// A shader module of `spirv`; the caller destroys it once its pipeline exists.
+VkShaderModule create_shader_module(VkDevice device, const std::vector<uint32_t>& spirv);
+
 class ComputeKernel {
  public:
   ComputeKernel(const VulkanContext& context, const std::vector<uint32_t>& spirv,

@@ -10,6 +10,11 @@
 
 namespace sdfbench {
 
+// `value` rounded up to a multiple of `alignment` (buffer offsets, device addresses).
+inline VkDeviceSize align_up(VkDeviceSize value, VkDeviceSize alignment) {
+  return (value + alignment - 1) / alignment * alignment;
+}
+
 class GpuBuffer {
  public:
   enum class Use { Upload, Readback, DeviceOnly };
