@@ -35,6 +35,9 @@ struct BackendOptions {
   bool hash_cell_given = false;     // --hash-cell given; otherwise sdf-hash uses the thesis' cell 1
   sdf::SphereTraceParams tracing;
   sdf::CacheOptions cache;          // --cache FILE, --on-bad-cache
+  // SDF Vulkan backends: #defines prepended to the kernel (the time-breakdown variants of
+  // tests/bench/sdf_kernel_bench.cpp); empty for every real run.
+  std::string kernel_defines;
 };
 
 // The scene-hash parameters a backend builds with: sdf-hash is the thesis' hash-only

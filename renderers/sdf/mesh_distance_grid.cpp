@@ -351,11 +351,16 @@ void compute_pseudo_normals(const Mesh& mesh, MeshDistanceGrid& grid) {
   }
 }
 
-uint32_t cell_of(const MeshDistanceGrid& grid, const glm::vec3& p) {
+glm::uvec3 cell_coords(const MeshDistanceGrid& grid, const glm::vec3& p) {
   const glm::vec3 rel = (p - grid.origin) / grid.cell_size;
   glm::uvec3 c;
   for (int a = 0; a < 3; ++a)
     c[a] = std::min(static_cast<uint32_t>(std::max(std::floor(rel[a]), 0.0f)), grid.dims[a] - 1);  // max faces: clamp
+  return c;
+}
+
+uint32_t cell_of(const MeshDistanceGrid& grid, const glm::vec3& p) {
+  const glm::uvec3 c = cell_coords(grid, p);
   return c.x + grid.dims.x * (c.y + grid.dims.y * c.z);
 }
 
@@ -503,6 +508,8 @@ float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::v
 MeshTraceLists make_trace_lists(const MeshDistanceGrid& grid, const Mesh& mesh) {
   MeshTraceLists lists;
   lists.triangles.reserve(grid.cell_triangles.size());
+  lists.centre_distances.reserve(grid.cell_triangles.size());
+  const float slack = kCentreDistanceSlackCells * grid.cell_size;
   std::vector<std::pair<float, uint32_t>> cell;
   for (uint32_t z = 0; z < grid.dims.z; ++z) {
     for (uint32_t y = 0; y < grid.dims.y; ++y) {
@@ -514,15 +521,12 @@ MeshTraceLists make_trace_lists(const MeshDistanceGrid& grid, const Mesh& mesh) 
           cell.emplace_back(closest_on_mesh_triangle(mesh, grid.cell_triangles[i], centre).distance_squared,
                             grid.cell_triangles[i]);
         std::sort(cell.begin(), cell.end());
-        for (const auto& [d2, t] : cell) lists.triangles.push_back(t);
+        for (const auto& [d2, t] : cell) {
+          lists.triangles.push_back(t);
+          lists.centre_distances.push_back(std::max(std::sqrt(d2) - slack, 0.0f));
+        }
       }
     }
-  }
-  for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-    const glm::vec3 centre = (vertex(mesh, t, 0) + vertex(mesh, t, 1) + vertex(mesh, t, 2)) / 3.0f;
-    float radius = 0.0f;
-    for (int k = 0; k < 3; ++k) radius = std::max(radius, glm::length(vertex(mesh, t, k) - centre));
-    lists.spheres.emplace_back(centre, radius * 1.0001f);  // rounding stays on the safe side
   }
   return lists;
 }
@@ -532,13 +536,13 @@ float traced_grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const
   closest_triangle = UINT32_MAX;
   glm::vec3 hi;
   if (!in_box(grid, p, hi)) return std::sqrt(point_box_distance2(p, mesh.bounds.min, mesh.bounds.max));
-  const uint32_t cell = cell_of(grid, p);
+  const glm::uvec3 c = cell_coords(grid, p);
+  const uint32_t cell = c.x + grid.dims.x * (c.y + grid.dims.y * c.z);
+  const float from_centre = glm::length(p - (grid.origin + (glm::vec3(c) + 0.5f) * grid.cell_size));
   float best = kInf;
   for (uint32_t i = grid.cell_begin[cell]; i < grid.cell_begin[cell + 1]; ++i) {
+    if (past_the_best(lists.centre_distances[i], from_centre, best)) break;
     const uint32_t t = lists.triangles[i];
-    // Farther than the best (with a margin for rounding): cannot win.
-    const float lower = glm::length(p - glm::vec3(lists.spheres[t])) - lists.spheres[t].w;
-    if (lower > 0.0f && lower * lower > best * 1.0001f) continue;
     ++evaluated;
     const float d2 = closest_on_mesh_triangle(mesh, t, p).distance_squared;
     if (d2 < best || (d2 == best && t < closest_triangle)) {  // ties: the lower index, as grid_distance

@@ -77,15 +77,27 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
 float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p, uint32_t* closest_triangle = nullptr);
 
 // A grid's lists as the sphere tracers walk them (sdf-cpu and the Vulkan kernels alike): each cell's
-// triangles nearest to the cell centre first, and each triangle's bounding sphere, so that a query
-// finds a close triangle early and skips the triangles whose sphere is farther than the best.
+// triangles nearest to the cell centre first, so that a query finds a close triangle early and
+// stops at the first entry whose distance from the centre, less the point's, exceeds the best:
+// dist(p, T) >= dist(c, T) - |p - c|, and the entries after it are farther from c still. (A
+// bounding-sphere test per entry before it cost more than it saved: 13 % slower on lavapipe.)
 struct MeshTraceLists {
-  std::vector<uint32_t> triangles;  // cell_triangles reordered within each cell (ties: lower index first)
-  std::vector<glm::vec4> spheres;   // per triangle: centre, radius (rounded up)
+  std::vector<uint32_t> triangles;       // cell_triangles reordered within each cell (ties: lower index first)
+  std::vector<float> centre_distances;   // per entry: dist(cell centre, triangle), rounded down
 };
+// How far make_trace_lists rounds a centre distance down, in cells: far beyond float rounding of
+// the distance and of |p - c| (both a few 1e-7 of the grid's extent), far below a step.
+inline constexpr float kCentreDistanceSlackCells = 1e-4f;
+// Whether the list entries from one with `centre_distance` on can all be skipped at a point
+// `from_centre` from its cell's centre, the best squared distance so far being `best` (the
+// kernels' test, sdf_scene_distance.glsl, is the same).
+inline bool past_the_best(float centre_distance, float from_centre, float best) {
+  const float lower = centre_distance - from_centre;
+  return lower > 0.0f && lower * lower > best * 1.0001f;
+}
 MeshTraceLists make_trace_lists(const MeshDistanceGrid& grid, const Mesh& mesh);
 
-// grid_distance() through `lists`, skipping by bounding sphere: the same distance and closest
+// grid_distance() through `lists`, stopping at past_the_best(): the same distance and closest
 // triangle, less work. Adds the point-triangle distances it computed to `evaluated`.
 float traced_grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const MeshTraceLists& lists,
                            const glm::vec3& p, uint32_t& closest_triangle, uint32_t& evaluated);

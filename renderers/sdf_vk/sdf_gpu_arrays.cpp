@@ -83,15 +83,20 @@ SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const
     const sdf::MeshDistanceGrid& grid = sdf.mesh_grids[m];
     const uint32_t first_triangle = static_cast<uint32_t>(out.vertices.size() / 3);
     const uint32_t first_cell = static_cast<uint32_t>(out.grid_cells.size());
-    const uint32_t list_base = static_cast<uint32_t>(out.grid_triangles.size());
+    const uint32_t list_base = static_cast<uint32_t>(out.grid_entries.size() / SDF_ENTRY_TEXELS);
     out.mesh_records.push_back(bits(grid.origin, bits(grid.cell_size)));
     out.mesh_records.push_back(glm::uvec4(grid.dims, first_cell));
     out.mesh_records.push_back(bits(mesh.bounds.min, first_triangle));
     out.mesh_records.push_back(bits(mesh.bounds.max, 0u));
     for (size_t c = 0; c < grid.cell_count(); ++c)
       out.grid_cells.emplace_back(list_base + grid.cell_begin[c], list_base + grid.cell_begin[c + 1]);
-    for (uint32_t t : culling.meshes[m].triangles) out.grid_triangles.push_back(first_triangle + t);
-    out.spheres.insert(out.spheres.end(), culling.meshes[m].spheres.begin(), culling.meshes[m].spheres.end());
+    const sdf::MeshTraceLists& lists = culling.meshes[m];
+    for (size_t i = 0; i < lists.triangles.size(); ++i) {
+      const glm::uvec3& t = mesh.triangles[lists.triangles[i]];
+      out.grid_entries.emplace_back(mesh.positions[t[0]], lists.centre_distances[i]);
+      out.grid_entries.emplace_back(mesh.positions[t[1]], std::bit_cast<float>(first_triangle + lists.triangles[i]));
+      out.grid_entries.emplace_back(mesh.positions[t[2]], 0.0f);
+    }
     for (const glm::uvec3& t : mesh.triangles) {
       for (int k = 0; k < 3; ++k) {
         out.vertices.emplace_back(mesh.positions[t[k]], 1.0f);
@@ -110,7 +115,8 @@ SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const
     for (int r = 0; r < 3; ++r) out.instance_records.push_back(row_bits(object_to_world, r));
     out.instance_records[out.instance_records.size() - 3].w = instance.material;
   }
-  static_assert(SDF_INSTANCE_TEXELS == 8 && SDF_MESH_TEXELS == 4, "records above match the layout");
+  static_assert(SDF_INSTANCE_TEXELS == 8 && SDF_MESH_TEXELS == 4 && SDF_ENTRY_TEXELS == 3,
+                "records above match the layout");
   return out;
 }
 

@@ -22,10 +22,9 @@ struct SdfGpuArrays {
   std::vector<uint32_t> octree_nodes;    // node words below the roots
   std::vector<uint32_t> instance_lists;  // per leaf: count, then instances
   std::vector<glm::uvec4> instance_records, mesh_records;
-  std::vector<glm::uvec2> grid_cells;    // (begin, end) into grid_triangles
-  std::vector<uint32_t> grid_triangles;  // global triangle indices, each cell's nearest first
+  std::vector<glm::uvec2> grid_cells;    // (begin, end) list entries
+  std::vector<glm::vec4> grid_entries;   // SDF_ENTRY_TEXELS per list entry, each cell's nearest first
   std::vector<glm::vec4> vertices, normals;  // 3 per global triangle
-  std::vector<glm::vec4> spheres;            // per global triangle: bounding sphere (centre, radius)
 };
 
 // Throws Error when an index would not fit the 31-bit node words.

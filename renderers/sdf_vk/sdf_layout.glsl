@@ -10,7 +10,8 @@ struct SdfParams {
   vec4 hash_origin;  // xyz: min corner of the hash box, w: hash cell size
   uvec4 hash_dims;   // xyz: cells per axis, w: max sphere-tracing steps
   vec4 tracing;      // x: hit epsilon in world units (hit_epsilon x scene scale), y: 1 for --hit exact,
-                     // z: --hit-footprint (exact: the hit threshold as a fraction of a pixel's footprint)
+                     // z: --hit-footprint (exact: the hit threshold as a fraction of a pixel's footprint),
+                     // w: 0 (a zero the compiler cannot see: SDF_REPEAT_* in sdf_scene_distance.glsl)
 };
 
 // A node word, the same in the hash-cell table (each cell's octree root) and the octree-node
@@ -28,11 +29,14 @@ struct SdfParams {
 
 // Mesh record, SDF_MESH_TEXELS RGBA32UI texels: (grid origin xyz, cell size) as float bits;
 // (grid dims xyz, first grid cell); (mesh bounds min xyz as float bits, first triangle);
-// (mesh bounds max xyz as float bits, 0). A grid cell is an RG32UI texel (begin, end) into the
-// triangle-list table, each cell's list nearest to the cell centre first. Triangle indices
-// there are global (the meshes' triangles concatenated) and index the vertex and normal tables
-// (3 RGBA32F texels per triangle) and the bounding-sphere table (1 per triangle).
+// (mesh bounds max xyz as float bits, 0). A grid cell is an RG32UI texel (begin, end) of list
+// entries, each cell's list nearest to the cell centre first. An entry is SDF_ENTRY_TEXELS RGBA32F
+// texels, the triangle's vertices inline (one fetch fewer per triangle than through an index, and
+// the first texel alone decides the early stop): (a, distance from the cell centre, rounded down);
+// (b, global triangle index as float bits); (c, 0). Global triangle indices (the meshes'
+// triangles concatenated) index the vertex and normal tables (3 RGBA32F texels per triangle).
 #define SDF_MESH_TEXELS 4
+#define SDF_ENTRY_TEXELS 3
 
 #define SDF_NONE 0xffffffffu
 

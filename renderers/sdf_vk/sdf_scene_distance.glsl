@@ -12,12 +12,34 @@ layout(binding = 11) uniform utextureBuffer instance_lists;   // R32UI count, th
 layout(binding = 12) uniform utextureBuffer instance_records; // RGBA32UI, SDF_INSTANCE_TEXELS each
 layout(binding = 13) uniform utextureBuffer mesh_records;     // RGBA32UI, SDF_MESH_TEXELS each
 layout(binding = 14) uniform utextureBuffer grid_cells;       // RG32UI (begin, end) per grid cell
-layout(binding = 15) uniform utextureBuffer grid_triangles;   // R32UI global triangle indices
+layout(binding = 15) uniform textureBuffer grid_entries;      // RGBA32F, SDF_ENTRY_TEXELS per list entry
 layout(binding = 16) uniform textureBuffer tri_vertices;      // RGBA32F, 3 per triangle (object space)
 layout(binding = 17) uniform textureBuffer tri_normals;       // RGBA32F, 3 per triangle (vertex normals)
-layout(binding = 18) uniform textureBuffer tri_spheres;       // RGBA32F bounding sphere per triangle
 
 const float SDF_FAR = 3.0e38f;  // "no surface": one step by it leaves the hash box
+
+// Time-breakdown variants (tests/bench/sdf_kernel_bench.cpp `breakdown`): SDF_REPEAT_<PART> = 2
+// does that part twice, the copy on inputs offset by a run-time zero (sdf.tracing.w, always 0) so
+// that the compiler cannot merge the two; the result is the same, the extra time is the part's.
+#ifndef SDF_REPEAT_LOCATE
+#define SDF_REPEAT_LOCATE 1    // hash cell and octree descent
+#endif
+#ifndef SDF_REPEAT_BOXES
+#define SDF_REPEAT_BOXES 1     // a listed instance's entry, box fetch and box test
+#endif
+#ifndef SDF_REPEAT_INSTANCE
+#define SDF_REPEAT_INSTANCE 1  // an evaluated instance's transform, mesh record and grid cell
+#endif
+#ifndef SDF_REPEAT_SCAN
+#define SDF_REPEAT_SCAN 1      // a list entry's first texel and early-stop test
+#endif
+#ifndef SDF_REPEAT_DISTANCE
+#define SDF_REPEAT_DISTANCE 1  // a point-triangle distance: the entry's other texels and closest point
+#endif
+#ifndef SDF_REPEAT_EXACT
+#define SDF_REPEAT_EXACT 1     // --hit exact's ray-triangle crossing search after a convergence
+#endif
+#define SDF_ZERO int(floatBitsToUint(sdf.tracing.w))
 
 struct SceneDistance {
   float distance;
@@ -41,12 +63,21 @@ vec3 transform_point(int row0, vec3 p) {
   return vec3(dot(r0.xyz, p) + r0.w, dot(r1.xyz, p) + r1.w, dot(r2.xyz, p) + r2.w);
 }
 
+// Vertex k of list entry `entry`.
+vec3 entry_vertex(int entry, int k) {
+  return texelFetch(grid_entries, SDF_ENTRY_TEXELS * entry + k).xyz;
+}
+
 // grid_distance() in renderers/sdf/mesh_distance_grid.cpp, object space: inside the grid box the
 // min over the cell's listed triangles (exact); outside, the distance to the mesh bounds.
 float mesh_distance(uint mesh, vec3 p, out uint triangle) {
   int base = int(mesh) * SDF_MESH_TEXELS;
   uvec4 r0 = texelFetch(mesh_records, base);
   uvec4 r1 = texelFetch(mesh_records, base + 1);
+  for (int r = 1; r < SDF_REPEAT_INSTANCE; ++r) {
+    r0 = min(r0, texelFetch(mesh_records, base + r * SDF_ZERO));
+    r1 = min(r1, texelFetch(mesh_records, base + 1 + r * SDF_ZERO));
+  }
   vec3 origin = uintBitsToFloat(r0.xyz);
   float cell_size = uintBitsToFloat(r0.w);
   uvec3 dims = r1.xyz;
@@ -58,18 +89,24 @@ float mesh_distance(uint mesh, vec3 p, out uint triangle) {
     return box_distance(p, bounds_min, bounds_max);
   }
   uvec3 c = min(uvec3(max(floor((p - origin) / cell_size), vec3(0.0f))), dims - 1u);
-  uvec2 range = texelFetch(grid_cells, int(r1.w + c.x + dims.x * (c.y + dims.y * c.z))).xy;
+  int cell = int(r1.w + c.x + dims.x * (c.y + dims.y * c.z));
+  uvec2 range = texelFetch(grid_cells, cell).xy;
+  for (int r = 1; r < SDF_REPEAT_INSTANCE; ++r) range = min(range, texelFetch(grid_cells, cell + r * SDF_ZERO).xy);
+  float from_centre = length(p - (origin + (vec3(c) + 0.5f) * cell_size));
   float best = SDF_FAR;
-  for (uint i = range.x; i < range.y; ++i) {
-    uint t = texelFetch(grid_triangles, int(i)).x;
-    // A triangle whose bounding sphere is farther than the best (with a margin for rounding)
-    // cannot win; the lists are sorted nearest first, so most are skipped after one fetch.
-    vec4 sphere = texelFetch(tri_spheres, int(t));
-    float lower = length(p - sphere.xyz) - sphere.w;
-    if (lower > 0.0f && lower * lower > best * 1.0001f) continue;
+  for (int i = int(range.x); i < int(range.y); ++i) {
+    vec4 first = texelFetch(grid_entries, SDF_ENTRY_TEXELS * i);
+    for (int r = 1; r < SDF_REPEAT_SCAN; ++r) first = min(first, texelFetch(grid_entries, SDF_ENTRY_TEXELS * i + r * SDF_ZERO));
+    // past_the_best() in mesh_distance_grid.h: no later entry can come nearer than the best.
+    float lower = first.w - from_centre;
+    if (lower > 0.0f && lower * lower > best * 1.0001f) break;
     COUNT(COUNTER_TRIANGLE_EVALS, 1u);
-    vec3 a = fetch_triangle_vertex(t, 0), b = fetch_triangle_vertex(t, 1), v2 = fetch_triangle_vertex(t, 2);
-    float d2 = distance_squared(p, closest_on_triangle(p, a, b, v2));
+    vec4 second = texelFetch(grid_entries, SDF_ENTRY_TEXELS * i + 1);
+    uint t = floatBitsToUint(second.w);
+    float d2 = distance_squared(p, closest_on_triangle(p, first.xyz, second.xyz, entry_vertex(i, 2)));
+    for (int r = 1; r < SDF_REPEAT_DISTANCE; ++r)
+      d2 = min(d2, distance_squared(p, closest_on_triangle(p, first.xyz, entry_vertex(i + r * SDF_ZERO, 1),
+                                                           entry_vertex(i + r * SDF_ZERO, 2))));
     // Ties go to the lower triangle index, as in the CPU's ascending lists.
     if (d2 < best || (d2 == best && t < triangle)) {
       best = d2;
@@ -79,24 +116,36 @@ float mesh_distance(uint mesh, vec3 p, out uint triangle) {
   return sqrt(best);
 }
 
-SceneDistance scene_distance(vec3 p) {
+// The node word of the octree leaf holding p (inside the hash box): hash cell, then descent
+// (thesis Algorithm 5.7). `zero` is 0 (SDF_REPEAT_LOCATE's copies pass SDF_ZERO multiples).
+// (Keeping the last leaf and skipping the descent while p stays in it was measured 8 % slower on
+// lavapipe: the state it keeps costs more than the fetches it saves.)
+uint leaf_word(vec3 p, int zero) {
   vec3 lo = sdf.hash_origin.xyz;
   float cell_size = sdf.hash_origin.w;
   uvec3 dims = sdf.hash_dims.xyz;
-  float outside = box_distance(p, lo, lo + vec3(dims) * cell_size);
-  if (outside > 0.0f) return SceneDistance(outside, SDF_NONE, SDF_NONE);
   uvec3 c = min(uvec3(max((p - lo) / cell_size, vec3(0.0f))), dims - 1u);
+  uint cell = c.x + dims.x * (c.y + dims.y * c.z);
   vec3 node_lo = lo + vec3(c) * cell_size;
   vec3 node_hi = lo + vec3(c + 1u) * cell_size;
-  uint word = texelFetch(hash_cells, int(c.x + dims.x * (c.y + dims.y * c.z))).x;
+  uint word = texelFetch(hash_cells, int(cell) + zero).x;
   while ((word & SDF_LEAF_BIT) == 0u) {
     vec3 mid = 0.5f * (node_lo + node_hi);
     bvec3 upper = greaterThanEqual(p, mid);
     node_lo = mix(node_lo, mid, upper);
     node_hi = mix(mid, node_hi, upper);
     uint k = (upper.x ? 1u : 0u) | (upper.y ? 2u : 0u) | (upper.z ? 4u : 0u);
-    word = texelFetch(octree_nodes, int(word + k)).x;
+    word = texelFetch(octree_nodes, int(word + k) + zero).x;
   }
+  return word;
+}
+
+SceneDistance scene_distance(vec3 p) {
+  vec3 lo = sdf.hash_origin.xyz;
+  float outside = box_distance(p, lo, lo + vec3(sdf.hash_dims.xyz) * sdf.hash_origin.w);
+  if (outside > 0.0f) return SceneDistance(outside, SDF_NONE, SDF_NONE);
+  uint word = leaf_word(p, 0);
+  for (int r = 1; r < SDF_REPEAT_LOCATE; ++r) word = min(word, leaf_word(p, r * SDF_ZERO));
   int list = int(word & ~SDF_LEAF_BIT);
   uint count = texelFetch(instance_lists, list).x;
   SceneDistance best = SceneDistance(SDF_FAR, SDF_NONE, SDF_NONE);
@@ -107,11 +156,17 @@ SceneDistance scene_distance(vec3 p) {
     // (the CPU keeps the first strict minimum too), and its transform and triangles go unread.
     uvec4 box_min = texelFetch(instance_records, record);
     uvec4 box_max = texelFetch(instance_records, record + 1);
+    for (int r = 1; r < SDF_REPEAT_BOXES; ++r) {
+      box_min = min(box_min, texelFetch(instance_records, record + r * SDF_ZERO));
+      box_max = min(box_max, texelFetch(instance_records, record + 1 + r * SDF_ZERO));
+    }
     COUNT(COUNTER_AABB_TESTS, 1u);
     if (box_distance(p, uintBitsToFloat(box_min.xyz), uintBitsToFloat(box_max.xyz)) >= best.distance) continue;
     COUNT(COUNTER_INSTANCE_EVALS, 1u);
     uint triangle;
-    float d = mesh_distance(box_min.w, transform_point(record + 2, p), triangle) * uintBitsToFloat(box_max.w);
+    vec3 q = transform_point(record + 2, p);
+    for (int r = 1; r < SDF_REPEAT_INSTANCE; ++r) q = min(q, transform_point(record + 2 + r * SDF_ZERO, p));
+    float d = mesh_distance(box_min.w, q, triangle) * uintBitsToFloat(box_max.w);
     if (d < best.distance) best = SceneDistance(d, i, triangle);
   }
   return best;

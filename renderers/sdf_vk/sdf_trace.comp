@@ -111,14 +111,13 @@ bool exact_crossing(Ray ray, float t_lo, float t_hi, uint instance, out float t_
     clip_to_box(o, d, cell_lo, cell_lo + cell_size, t_enter, t_exit);
     t_exit += 1e-5f * abs(t_exit);  // rounding of the cell walls
     uvec2 range = texelFetch(grid_cells, int(r1.w + c.x + dims.x * (c.y + dims.y * c.z))).xy;
-    for (uint i = range.x; i < range.y; ++i) {
-      uint k = texelFetch(grid_triangles, int(i)).x;
+    for (int i = int(range.x); i < int(range.y); ++i) {
+      vec4 second = texelFetch(grid_entries, SDF_ENTRY_TEXELS * i + 1);
+      uint k = floatBitsToUint(second.w);
       float tk;
       vec2 uvk;
       COUNT(COUNTER_TRIANGLE_TESTS, 1u);
-      if (!ray_triangle(o, d, fetch_triangle_vertex(k, 0), fetch_triangle_vertex(k, 1), fetch_triangle_vertex(k, 2), tk,
-                        uvk))
-        continue;
+      if (!ray_triangle(o, d, entry_vertex(i, 0), second.xyz, entry_vertex(i, 2), tk, uvk)) continue;
       // Ties go to the lower triangle index, as in sdf-cpu.
       if (tk >= t_lo && tk <= min(t_exit, t_hi) && (tk < t_hit || (tk == t_hit && k < triangle))) {
         t_hit = tk;
@@ -158,7 +157,11 @@ bool trace_sdf(Ray ray, float tmax, out float t, out uint instance, out uint tri
     float epsilon = hit_epsilon(ray, t);
     if (exact && (d.instance != cleared_instance || t > cleared_until)) {
       float t_hit;
-      if (exact_crossing(ray, t - epsilon, t + epsilon, d.instance, t_hit, triangle, uv)) {
+      bool crossed = exact_crossing(ray, t - epsilon, t + epsilon, d.instance, t_hit, triangle, uv);
+      // (SDF_REPEAT_EXACT: the time breakdown's copy, as in sdf_scene_distance.glsl.)
+      for (int r = 1; r < SDF_REPEAT_EXACT; ++r)
+        crossed = exact_crossing(ray, t - epsilon + float(r) * sdf.tracing.w, t + epsilon, d.instance, t_hit, triangle, uv);
+      if (crossed) {
         if (t_hit >= tmax) return false;
         t = max(t_hit, 0.0f);
         instance = d.instance;

@@ -30,7 +30,7 @@ SdfVkRenderer::SdfVkRenderer(std::string name, const BackendOptions& options)
     : name_(std::move(name)),
       options_(options),
       context_(VulkanContext::Options{options.device, options.validation}),
-      runner_(context_, compute_tile_kernels(context_, "sdf_trace.comp"), kSdfCounters, options.whitted_passes) {
+      runner_(context_, compute_tile_kernels(context_, "sdf_trace.comp", options.kernel_defines), kSdfCounters, options.whitted_passes) {
   sdf::validate(scene_hash_params_for(name_, options_));
 }
 
@@ -50,10 +50,9 @@ void SdfVkRenderer::prepare(const Scene& scene) {
   instance_records_ = texel_table(context_, arrays.instance_records, VK_FORMAT_R32G32B32A32_UINT, "instance records");
   mesh_records_ = texel_table(context_, arrays.mesh_records, VK_FORMAT_R32G32B32A32_UINT, "mesh records");
   grid_cells_ = texel_table(context_, arrays.grid_cells, VK_FORMAT_R32G32_UINT, "mesh grid cells");
-  grid_triangles_ = texel_table(context_, arrays.grid_triangles, VK_FORMAT_R32_UINT, "mesh grid triangle lists");
+  grid_entries_ = texel_table(context_, arrays.grid_entries, VK_FORMAT_R32G32B32A32_SFLOAT, "mesh grid triangle lists");
   vertices_ = texel_table(context_, arrays.vertices, VK_FORMAT_R32G32B32A32_SFLOAT, "triangle vertices");
   normals_ = texel_table(context_, arrays.normals, VK_FORMAT_R32G32B32A32_SFLOAT, "triangle normals");
-  spheres_ = texel_table(context_, arrays.spheres, VK_FORMAT_R32G32B32A32_SFLOAT, "triangle bounding spheres");
   const VkDescriptorType texel = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
   runner_.set_scene(scene, {{8, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &params_},
                             {9, texel, &hash_cells_},
@@ -62,10 +61,9 @@ void SdfVkRenderer::prepare(const Scene& scene) {
                             {12, texel, &instance_records_},
                             {13, texel, &mesh_records_},
                             {14, texel, &grid_cells_},
-                            {15, texel, &grid_triangles_},
+                            {15, texel, &grid_entries_},
                             {16, texel, &vertices_},
-                            {17, texel, &normals_},
-                            {18, texel, &spheres_}});
+                            {17, texel, &normals_}});
 }
 
 }  // namespace sdfbench

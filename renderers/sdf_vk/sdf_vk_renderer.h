@@ -29,7 +29,7 @@ class SdfVkRenderer : public Renderer {
   std::optional<StructureStats> stats_;  // of the CPU structures the GPU tables were flattened from
   VulkanContext context_;
   GpuBuffer params_, hash_cells_, octree_nodes_, instance_lists_, instance_records_, mesh_records_, grid_cells_,
-      grid_triangles_, vertices_, normals_, spheres_;
+      grid_entries_, vertices_, normals_;
   VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
 };
 

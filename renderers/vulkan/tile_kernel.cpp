@@ -28,11 +28,13 @@ class ComputeTileKernel : public TileKernel {
 
 }  // namespace
 
-TileKernelFactory compute_tile_kernels(const VulkanContext& context, const std::string& shader_name) {
+TileKernelFactory compute_tile_kernels(const VulkanContext& context, const std::string& shader_name,
+                                       const std::string& extra_defines) {
   auto compiled = std::make_shared<std::map<std::string, std::vector<uint32_t>>>();
-  return [&context, shader_name, compiled](const std::string& defines, const std::vector<KernelBinding>& bindings) {
+  return [&context, shader_name, extra_defines, compiled](const std::string& defines,
+                                                          const std::vector<KernelBinding>& bindings) {
     std::vector<uint32_t>& spirv = (*compiled)[defines];
-    if (spirv.empty()) spirv = compile_shader(shader_name, defines);
+    if (spirv.empty()) spirv = compile_shader(shader_name, extra_defines + defines);
     return std::make_unique<ComputeTileKernel>(context, spirv, bindings);
   };
 }

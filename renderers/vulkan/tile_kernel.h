@@ -32,7 +32,8 @@ using TileKernelFactory =
     std::function<std::unique_ptr<TileKernel>(const std::string& defines, const std::vector<KernelBinding>& bindings)>;
 
 // The compute kernel of an embedded .comp shader (8 x 8 invocations per work group), its SPIR-V
-// compiled once per set of defines.
-TileKernelFactory compute_tile_kernels(const VulkanContext& context, const std::string& shader_name);
+// compiled once per set of defines; `extra_defines` go before every frame configuration's.
+TileKernelFactory compute_tile_kernels(const VulkanContext& context, const std::string& shader_name,
+                                       const std::string& extra_defines = "");
 
 }  // namespace sdfbench
