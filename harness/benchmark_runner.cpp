@@ -53,6 +53,8 @@ Measurement configuration_fields(const BenchConfig& config, size_t run_index, co
     m.max_steps = t.max_steps;
     m.hit_epsilon = t.hit_epsilon;
     m.hit_footprint = t.footprint;
+    m.over_relax = t.over_relax;
+    m.cell_bound = t.cell_bound ? 1.0 : 0.0;
   }
   m.requested_frames = settings.frames;
   m.warmup = settings.warmup;

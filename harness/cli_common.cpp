@@ -137,6 +137,14 @@ void add_tracing_options(CLI::App& command, sdf::SphereTraceParams& tracing, con
   command.add_option("--hit-footprint", tracing.footprint,
                      "--hit exact: hit distance as a fraction of a pixel's footprint at the ray's length")
       ->capture_default_str()->check(number_in(1e-4, 1.0))->group(group);
+  command.add_option("--over-relax", tracing.over_relax,
+                     "over-relaxed sphere tracing (Keinert et al. 2014): steps of this x the distance, checked and undone "
+                     "where they may have jumped a surface; 1 (default): the thesis' plain sphere tracing")
+      ->capture_default_str()->check(number_in(1.0, 1.95))->group(group);
+  command.add_flag("--cell-bound", tracing.cell_bound,
+                   "Vulkan SDF kernels: a step from an octree leaf (hash cell) that no listed instance's box comes "
+                   "near crosses it without evaluating an instance (off: the thesis' step everywhere)")
+      ->group(group);
   command.add_option("--hit", tracing.hit,
                      "SDF hits: exact (default: the ray's crossing with the triangles listed where it converged) or "
                      "thesis (the converged point, the closest point's normal and uv)")

@@ -11,7 +11,7 @@ namespace {
 
 struct SweepArgs {
   std::string scene, backend = "sdf-octree", mode = "primary", size = "320x180", hash_cells = "10", depths = "4",
-              min_objects = "1", mesh_cells = "0";
+              min_objects = "1", mesh_cells = "0", over_relax = "1", cell_bound = "0";
   unsigned max_depth = 4;
   RunOptions run;
   BackendOptions options;
@@ -35,16 +35,22 @@ void run_sweep(SweepArgs args) {
   for (float cell : parse_list<float>(args.hash_cells, "--hash-cell"))
     for (unsigned depth : parse_list<unsigned>(args.depths, "--octree-depth"))
       for (unsigned min_objects : parse_list<unsigned>(args.min_objects, "--octree-min-objects"))
-        for (float mesh_cell : parse_list<float>(args.mesh_cells, "--mesh-cell")) {
-          BenchConfig c = base;
-          c.options.scene_hash.hash_cell = cell;
-          c.options.scene_hash.octree_depth = depth;
-          c.options.scene_hash.octree_min_objects = min_objects;
-          c.options.mesh_grid.cell_size = mesh_cell;
-          sdf::validate(c.options.scene_hash);
-          if (min_objects < 1) throw Error("--octree-min-objects: values must be >= 1");
-          plan.push_back(c);
-        }
+        for (float mesh_cell : parse_list<float>(args.mesh_cells, "--mesh-cell"))
+          for (float omega : parse_list<float>(args.over_relax, "--over-relax"))
+            for (unsigned bound : parse_list<unsigned>(args.cell_bound, "--cell-bound")) {
+              BenchConfig c = base;
+              if (bound > 1) throw Error("--cell-bound: values must be 0 (off) or 1 (on)");
+              c.options.tracing.cell_bound = bound == 1;
+              if (!(omega >= 1.0f && omega <= 1.95f)) throw Error("--over-relax: values must be in [1, 1.95]");
+              c.options.tracing.over_relax = omega;
+              c.options.scene_hash.hash_cell = cell;
+              c.options.scene_hash.octree_depth = depth;
+              c.options.scene_hash.octree_min_objects = min_objects;
+              c.options.mesh_grid.cell_size = mesh_cell;
+              sdf::validate(c.options.scene_hash);
+              if (min_objects < 1) throw Error("--octree-min-objects: values must be >= 1");
+              plan.push_back(c);
+            }
   run_and_report(plan, args.run);
 }
 
@@ -67,6 +73,13 @@ void register_sweep_command(CLI::App& app) {
                   "mesh grid cells along the mesh's largest extent (with --mesh-cell 0)")
       ->capture_default_str()->check(CLI::Range(1u, 1024u));
   add_tracing_options(*cmd, args->options.tracing, "SDF tracing");
+  cmd->remove_option(cmd->get_option("--over-relax"));  // axes here: lists
+  cmd->remove_option(cmd->get_option("--cell-bound"));
+  cmd->add_option("--cell-bound", args->cell_bound, "cell bounds off (0) and/or on (1), comma-separated")
+      ->capture_default_str()->group("SDF tracing");
+  cmd->add_option("--over-relax", args->over_relax,
+                  "over-relaxation factors, comma-separated (1: the thesis' plain sphere tracing; Keinert et al. 2014)")
+      ->capture_default_str()->group("SDF tracing");
   add_run_options(*cmd, args->run);
   cmd->add_option("--device", args->options.device, "Vulkan device: lavapipe (default), gpu, an index or a name");
   cmd->add_option("--threads", args->options.threads, "CPU threads (Embree reference, sdf-cpu)")->check(CLI::Range(1u, 1024u));

@@ -23,7 +23,7 @@ struct Measurement {
   std::optional<double> cells_per_extent;  // when mesh_cell is 0 (derived from it)
   std::string lists;                        // "exact" or "thesis" (--lists)
   std::string hit;                          // "exact" or "thesis" (--hit)
-  std::optional<double> max_steps, hit_epsilon, hit_footprint;
+  std::optional<double> max_steps, hit_epsilon, hit_footprint, over_relax, cell_bound;
   // the run's methodology, as requested (--frames, --warmup, --budget-s, --reference, --device, ...)
   unsigned requested_frames = 0, warmup = 0;
   double budget_s = 0;

@@ -70,7 +70,7 @@ TEST(MeasurementColumns, MatchTheDocumentedListAndFieldCount) {
   const std::vector<std::string>& c = measurement_columns();
   for (const char* required : {"scene", "mesh", "triangles", "objects", "backend", "mode", "width", "height", "hash_cell",
                                "octree_depth", "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent",
-                               "hit", "max_steps", "hit_epsilon", "hit_footprint", "requested_frames", "warmup", "budget_s",
+                               "hit", "max_steps", "hit_epsilon", "hit_footprint", "over_relax", "cell_bound", "requested_frames", "warmup", "budget_s",
                                "reference", "requested_device", "whitted_passes", "validate", "frames", "ms_median", "ms_min", "ms_max",
                                "fps", "mrays_per_s", "steps_per_ray", "instance_evals_per_ray", "triangle_evals_per_ray",
                                "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray",
@@ -239,6 +239,24 @@ TEST(SweepCommand, KilledRunLeavesAValidCsvThatResumeCompletes) {
   }
 }
 
+// The sphere-tracing options are sweep axes, each row saying its values (issue 14).
+TEST(SweepCommand, OverRelaxationAndCellBoundAreAxes) {
+  test::TempDir dir;
+  const auto csv = dir.path() / "options.csv";
+  const test::CommandResult r = test::run_sdfbench(
+      "sweep --scene thesis:sphere:4 --size 32x18 --check-size 32x18 --frames 1 --warmup 0 --cells-per-extent 8 "
+      "--over-relax 1,1.5 --cell-bound 0,1 --csv " + csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const CsvTable t = read_csv(csv);
+  ASSERT_EQ(t.rows.size(), 4u);
+  std::set<std::pair<std::string, std::string>> seen;
+  for (const auto& row : t.rows) {
+    seen.emplace(row[t.column("over_relax")], row[t.column("cell_bound")]);
+    EXPECT_EQ(row[t.column("agreement")], "ok") << row[t.column("over_relax")] << " " << row[t.column("cell_bound")];
+  }
+  EXPECT_EQ(seen, (std::set<std::pair<std::string, std::string>>{{"1", "0"}, {"1", "1"}, {"1.5", "0"}, {"1.5", "1"}}));
+}
+
 TEST(TableCommand, BadArgumentsAreClearErrors) {
   const std::pair<std::string, std::string> cases[] = {
       {"table --table 6.4", "--table '6.4'"},
@@ -249,6 +267,9 @@ TEST(TableCommand, BadArgumentsAreClearErrors) {
       {"table --size 0x10 --backends embree", "--size"},
       {"sweep --scene thesis:sphere:1 --backend embree", "SDF structures"},
       {"sweep --scene thesis:sphere:1 --backend sdf-cpu --hash-cell 0", "hash"},
+      {"sweep --scene thesis:sphere:1 --over-relax 1,2.5", "--over-relax"},
+      {"sweep --scene thesis:sphere:1 --cell-bound 0,2", "--cell-bound"},
+      {"render --scene thesis:sphere:1 --backend sdf-cpu --cell-bound", "sdf-cpu: --cell-bound"},
   };
   for (const auto& [args, words] : cases) {
     const test::CommandResult r = test::run_sdfbench(args);

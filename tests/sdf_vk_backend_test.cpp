@@ -4,6 +4,8 @@
 
 #include "harness/image_agreement.h"
 #include "renderers/renderer.h"
+#include "renderers/work_counters.h"
+#include "scenes/error.h"
 #include "renderers/shading/gpu_types.h"
 #include "scenes/thesis_layout.h"
 
@@ -68,6 +70,66 @@ TEST(SdfVkVsCpu, SameHitsAsTheCpuSphereTracer) {
       EXPECT_GE(same_prim, pixels - 2) << backend << " " << to_string(mode);
       EXPECT_GE(compare_frames(images, expected).psnr, 40.0) << backend << " " << to_string(mode);
     }
+  }
+}
+
+// The method at its best (issue 14), options off by default: over-relaxed sphere tracing and the
+// per-leaf bound change the path, not what is drawn; over-relaxation is the same on the CPU.
+TEST(SdfOptions, OverRelaxationDrawsTheSameAndTracesAsTheCpu) {
+  const Scene scene = make_thesis_scene({"bunny", 300, 1});
+  BackendOptions plain_options, relaxed;
+  relaxed.tracing.over_relax = 1.6f;
+  relaxed.validation = true;
+  auto plain = create_renderer("sdf-octree", plain_options);
+  auto gpu = create_renderer("sdf-octree", relaxed);
+  auto cpu = create_renderer("sdf-cpu", relaxed);
+  for (Renderer* r : {plain.get(), gpu.get(), cpu.get()}) r->prepare(scene);
+  for (RenderMode mode : kModes) {
+    SCOPED_TRACE(to_string(mode));
+    const FrameRequest request{96, 54, mode, true, std::nullopt, true};
+    const FrameResult a = plain->render(request), b = gpu->render(request), c = cpu->render(request);
+    const Agreement g = compare_frames(b.images, a.images);
+    EXPECT_GE(g.hit_percent, 99.9);
+    EXPECT_GE(g.id_percent, 99.9);
+    EXPECT_GE(g.psnr, 40.0);
+    EXPECT_NE(b.counters[COUNTER_STEPS], a.counters[COUNTER_STEPS]) << "the option changes the march";
+    // The CPU tracer takes the same steps, a float contraction apart.
+    const double gpu_steps = double(*b.counters[COUNTER_STEPS]), cpu_steps = double(*c.counters[COUNTER_STEPS]);
+    EXPECT_NEAR(gpu_steps / cpu_steps, 1.0, 1e-3);
+  }
+  EXPECT_EQ(gpu->validation_messages(), 0u);
+}
+
+TEST(SdfOptions, CellBoundSkipsInstancesAndDrawsTheSame) {
+  const Scene scene = make_thesis_scene({"teapot", 300, 2});
+  for (const char* backend : {"sdf-octree", "sdf-hash"}) {
+    SCOPED_TRACE(backend);
+    BackendOptions plain_options, bounded;
+    bounded.tracing.cell_bound = true;
+    bounded.validation = true;
+    auto plain = create_renderer(backend, plain_options);
+    auto gpu = create_renderer(backend, bounded);
+    plain->prepare(scene);
+    gpu->prepare(scene);
+    for (RenderMode mode : kModes) {
+      SCOPED_TRACE(to_string(mode));
+      const FrameRequest request{96, 54, mode, true, std::nullopt, true};
+      const FrameResult a = plain->render(request), b = gpu->render(request);
+      const Agreement g = compare_frames(b.images, a.images);
+      EXPECT_GE(g.hit_percent, 99.9);
+      EXPECT_GE(g.id_percent, 99.9);
+      EXPECT_GE(g.psnr, 40.0);
+      EXPECT_LT(*b.counters[COUNTER_INSTANCE_EVALS], *a.counters[COUNTER_INSTANCE_EVALS]);
+    }
+    EXPECT_EQ(gpu->validation_messages(), 0u);
+  }
+  BackendOptions bounded;
+  bounded.tracing.cell_bound = true;
+  try {
+    create_renderer("sdf-cpu", bounded);
+    ADD_FAILURE() << "sdf-cpu accepted --cell-bound";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--cell-bound"), std::string::npos) << e.what();
   }
 }
 

@@ -10,6 +10,8 @@
 namespace sdfbench {
 
 SdfCpuRenderer::SdfCpuRenderer(const BackendOptions& options) : options_(options), threads_(cpu_thread_count(options)) {
+  if (options.tracing.cell_bound)
+    throw Error("sdf-cpu: --cell-bound is an option of the Vulkan SDF kernels (sdf-hash, sdf-octree)");
   sdf::validate(options.scene_hash);
 }
 

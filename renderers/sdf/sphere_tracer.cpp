@@ -46,6 +46,10 @@ SphereTracer::MarchEnd SphereTracer::march(const shading::Ray& ray, float t1, fl
   const glm::vec3 lo = hash.origin, hi = hash.origin + glm::vec3(hash.dims) * hash.cell_size;
   // One epsilon past t1: a step landing a rounding error beyond the box's far face (a wall lying
   // on it) would otherwise end the march in front of the surface.
+  // --over-relax (Keinert et al. 2014): a step of omega x the distance is safe when the spheres of
+  // the distances at its two ends overlap (their union covers it); when they do not, the march
+  // goes back to the previous point, takes its plain step, and steps plainly from then on.
+  float omega = params_.over_relax, t_previous = t, plain_previous = 0.0f, previous = 0.0f, step = 0.0f;
   for (; steps < params_.max_steps; ++steps) {
     const float epsilon = epsilon_at(ray, t);
     if (t > t1 + epsilon) return MarchEnd::left;
@@ -58,16 +62,27 @@ SphereTracer::MarchEnd SphereTracer::march(const shading::Ray& ray, float t1, fl
       (*counts)[COUNTER_TRIANGLE_EVALS] += d.triangle_evaluations;
       (*counts)[COUNTER_AABB_TESTS] += d.box_tests;
     }
-    // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
     last = d;
     t_last = t;
+    if (omega > 1.0f && d.distance + previous < step) {
+      t = t_previous + plain_previous;
+      omega = 1.0f;
+      step = 0.0f;
+      continue;
+    }
+    // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
     if (d.distance < epsilon && d.triangle != std::numeric_limits<uint32_t>::max()) {
       ++steps;
       return MarchEnd::converged;
     }
     // At least epsilon: where the ray enters the box, rounding can leave the point a hair
     // outside it, and a bound of ~1e-7 would not move t at all (the ray then stalls to a miss).
-    t += std::max(d.distance, epsilon);
+    const float plain = std::max(d.distance, epsilon);
+    step = omega > 1.0f ? std::max(omega * d.distance, epsilon) : plain;
+    t_previous = t;
+    plain_previous = plain;
+    previous = d.distance;
+    t += step;
   }
   return t > t1 + epsilon_at(ray, t) ? MarchEnd::left : MarchEnd::out_of_steps;
 }

@@ -23,6 +23,13 @@ struct SphereTraceParams {
   // (never below float precision at the point); --hit thesis uses hit_epsilon instead.
   float footprint = 0.25f;
   float hit_epsilon = 5e-6f;  // --hit thesis: hit when the distance drops below this x the scene scale (2e-5 left ~1 % silhouette false hits)
+  // --over-relax: over-relaxed sphere tracing (Keinert et al. 2014), steps of this x the distance
+  // while consecutive unbounding spheres overlap; 1 (the thesis' plain sphere tracing) is off.
+  float over_relax = 1.0f;
+  // --cell-bound (Vulkan SDF kernels): each octree leaf (or hash cell) keeps a lower bound on the
+  // distance from it to any listed surface, and a step from a leaf whose bound is above 0 crosses
+  // the leaf and goes the bound beyond, evaluating no instance. Off: the thesis' step everywhere.
+  bool cell_bound = false;
 };
 
 // `counts` (nullable): adds the steps, instance and triangle evaluations and box tests, counted

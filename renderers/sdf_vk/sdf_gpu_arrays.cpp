@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <functional>
+#include <limits>
 #include <string>
 
 #include "renderers/frame_params.h"
@@ -25,22 +26,42 @@ void check_word(size_t value, const char* what) {
                 std::to_string(value) + "); use a larger --hash-cell or --octree-min-objects");
 }
 
+// Distance between two boxes (0 when they touch or overlap).
+float box_box_distance(const glm::vec3& lo_a, const glm::vec3& hi_a, const Aabb& b) {
+  const glm::vec3 gap = glm::max(glm::max(lo_a - b.max, b.min - hi_a), glm::vec3(0.0f));
+  return glm::length(gap);
+}
+
 // Re-encodes the CPU's flat octrees as node words: a cell's root goes into the hash-cell
 // table (one fetch fewer per step), its descendants into the node table, 8 siblings together.
-void flatten_hash(const sdf::SceneHash& hash, SdfGpuArrays& out) {
+// `instance_boxes` (--cell-bound, else null): each leaf's bound, the least distance from its box to
+// a listed instance's box. The traced distance at any point of the leaf is the least over the listed
+// instances, each at least its box's distance (triangles and grid bounds lie inside the box).
+void flatten_hash(const sdf::SceneHash& hash, const std::vector<Aabb>* instance_boxes, SdfGpuArrays& out) {
   // Neighbouring leaves often list the same instances: a leaf equal to the previous one shares
   // its list (thesis:bunny:1000, octree: 69 -> 25 MB of lists).
   size_t previous = 0;
-  std::function<uint32_t(uint32_t)> encode = [&](uint32_t index) -> uint32_t {
+  // Rounding: the kernel's descent computes the leaf boxes in floats too.
+  const float slack = 1e-5f * hash.cell_size;
+  std::function<uint32_t(uint32_t, glm::vec3, float)> encode = [&](uint32_t index, glm::vec3 lo, float size) -> uint32_t {
     const sdf::OctreeNode& node = hash.nodes[index];
     if (node.first_child < 0) {
       const auto list = hash.instance_lists.begin() + node.list_begin;
+      float bound = 0.0f;
+      if (instance_boxes && node.list_count > 0) {
+        bound = std::numeric_limits<float>::max();
+        for (auto it = list; it != list + node.list_count; ++it)
+          bound = std::min(bound, box_box_distance(lo, lo + size, (*instance_boxes)[*it]));
+        bound = std::max(bound - slack, 0.0f);
+      }
       const bool same = !out.instance_lists.empty() && out.instance_lists[previous] == node.list_count &&
-                        std::equal(list, list + node.list_count, out.instance_lists.begin() + previous + 1);
+                        out.instance_lists[previous + 1] == bits(bound) &&
+                        std::equal(list, list + node.list_count, out.instance_lists.begin() + previous + 2);
       if (!same) {
         previous = out.instance_lists.size();
         check_word(previous, "instance-list entries");
         out.instance_lists.push_back(node.list_count);
+        out.instance_lists.push_back(bits(bound));
         out.instance_lists.insert(out.instance_lists.end(), list, list + node.list_count);
       }
       return SDF_LEAF_BIT | static_cast<uint32_t>(previous);
@@ -48,8 +69,10 @@ void flatten_hash(const sdf::SceneHash& hash, SdfGpuArrays& out) {
     const size_t first = out.octree_nodes.size();
     check_word(first + 8, "octree nodes");
     out.octree_nodes.resize(first + 8);
+    const float half = 0.5f * size;
     for (uint32_t k = 0; k < 8; ++k) {
-      const uint32_t word = encode(static_cast<uint32_t>(node.first_child) + k);
+      const glm::vec3 child_lo = lo + half * glm::vec3(k & 1u, (k >> 1) & 1u, (k >> 2) & 1u);
+      const uint32_t word = encode(static_cast<uint32_t>(node.first_child) + k, child_lo, half);
       out.octree_nodes[first + k] = word;
     }
     // Eight leaves sharing one list are that leaf: the same distances, one descent step less.
@@ -62,7 +85,10 @@ void flatten_hash(const sdf::SceneHash& hash, SdfGpuArrays& out) {
     return static_cast<uint32_t>(first);
   };
   out.hash_cells.reserve(hash.cell_root.size());
-  for (uint32_t root : hash.cell_root) out.hash_cells.push_back(encode(root));
+  for (size_t c = 0; c < hash.cell_root.size(); ++c) {
+    const glm::uvec3 cell(c % hash.dims.x, (c / hash.dims.x) % hash.dims.y, c / (size_t(hash.dims.x) * hash.dims.y));
+    out.hash_cells.push_back(encode(hash.cell_root[c], hash.origin + glm::vec3(cell) * hash.cell_size, hash.cell_size));
+  }
 }
 
 }  // namespace
@@ -75,8 +101,9 @@ SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const
   out.params.tracing =
       glm::vec4(tracing.hit_epsilon * scene_scale(scene), tracing.hit == sdf::HitMode::exact ? 1.0f : 0.0f,
                 tracing.footprint, 0.0f);
-  flatten_hash(hash, out);
+  out.params.options = glm::vec4(tracing.over_relax, 0.0f, 0.0f, 0.0f);
   const sdf::TraceCulling culling = sdf::make_trace_culling(scene, sdf);
+  flatten_hash(hash, tracing.cell_bound ? &culling.instance_boxes : nullptr, out);
 
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];

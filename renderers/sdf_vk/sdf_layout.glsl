@@ -12,11 +12,13 @@ struct SdfParams {
   vec4 tracing;      // x: hit epsilon in world units (hit_epsilon x scene scale), y: 1 for --hit exact,
                      // z: --hit-footprint (exact: the hit threshold as a fraction of a pixel's footprint),
                      // w: 0 (a zero the compiler cannot see: SDF_REPEAT_* in sdf_scene_distance.glsl)
+  vec4 options;      // x: --over-relax omega (1: off), yzw: 0
 };
 
 // A node word, the same in the hash-cell table (each cell's octree root) and the octree-node
 // table: with SDF_LEAF_BIT set, the low 31 bits are the offset of the leaf's instance list
-// (its length, then the instance indices); clear, the word is the index of the node's 8
+// (its length; a lower bound on the distance from the leaf's box to any listed instance's box,
+// float bits, 0 without --cell-bound; then the instance indices); clear, the word is the index of the node's 8
 // children (octant bit 0: +x, 1: +y, 2: +z). A hash-only structure is a leaf per cell; eight
 // sibling leaves with the same list are stored as their parent, a leaf.
 #define SDF_LEAF_BIT 0x80000000u

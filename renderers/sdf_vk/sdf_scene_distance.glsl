@@ -8,7 +8,7 @@
 layout(std140, binding = 8) uniform SdfBlock { SdfParams sdf; };
 layout(binding = 9) uniform utextureBuffer hash_cells;        // R32UI node word per hash cell
 layout(binding = 10) uniform utextureBuffer octree_nodes;     // R32UI node words below the roots
-layout(binding = 11) uniform utextureBuffer instance_lists;   // R32UI count, then instances
+layout(binding = 11) uniform utextureBuffer instance_lists;   // R32UI count, cell bound, then instances
 layout(binding = 12) uniform utextureBuffer instance_records; // RGBA32UI, SDF_INSTANCE_TEXELS each
 layout(binding = 13) uniform utextureBuffer mesh_records;     // RGBA32UI, SDF_MESH_TEXELS each
 layout(binding = 14) uniform utextureBuffer grid_cells;       // RG32UI (begin, end) per grid cell
@@ -120,14 +120,14 @@ float mesh_distance(uint mesh, vec3 p, out uint triangle) {
 // (thesis Algorithm 5.7). `zero` is 0 (SDF_REPEAT_LOCATE's copies pass SDF_ZERO multiples).
 // (Keeping the last leaf and skipping the descent while p stays in it was measured 8 % slower on
 // lavapipe: the state it keeps costs more than the fetches it saves.)
-uint leaf_word(vec3 p, int zero) {
+uint leaf_word(vec3 p, int zero, out vec3 node_lo, out vec3 node_hi) {
   vec3 lo = sdf.hash_origin.xyz;
   float cell_size = sdf.hash_origin.w;
   uvec3 dims = sdf.hash_dims.xyz;
   uvec3 c = min(uvec3(max((p - lo) / cell_size, vec3(0.0f))), dims - 1u);
   uint cell = c.x + dims.x * (c.y + dims.y * c.z);
-  vec3 node_lo = lo + vec3(c) * cell_size;
-  vec3 node_hi = lo + vec3(c + 1u) * cell_size;
+  node_lo = lo + vec3(c) * cell_size;
+  node_hi = lo + vec3(c + 1u) * cell_size;
   uint word = texelFetch(hash_cells, int(cell) + zero).x;
   while ((word & SDF_LEAF_BIT) == 0u) {
     vec3 mid = 0.5f * (node_lo + node_hi);
@@ -140,17 +140,28 @@ uint leaf_word(vec3 p, int zero) {
   return word;
 }
 
-SceneDistance scene_distance(vec3 p) {
-  vec3 lo = sdf.hash_origin.xyz;
-  float outside = box_distance(p, lo, lo + vec3(sdf.hash_dims.xyz) * sdf.hash_origin.w);
-  if (outside > 0.0f) return SceneDistance(outside, SDF_NONE, SDF_NONE);
-  uint word = leaf_word(p, 0);
-  for (int r = 1; r < SDF_REPEAT_LOCATE; ++r) word = min(word, leaf_word(p, r * SDF_ZERO));
+// The leaf holding p (inside the hash box) and its box.
+uint find_leaf(vec3 p, out vec3 node_lo, out vec3 node_hi) {
+  uint word = leaf_word(p, 0, node_lo, node_hi);
+  for (int r = 1; r < SDF_REPEAT_LOCATE; ++r) {
+    vec3 lo_copy, hi_copy;
+    word = min(word, leaf_word(p, r * SDF_ZERO, lo_copy, hi_copy));
+  }
+  return word;
+}
+
+// --cell-bound: the leaf's least distance to a listed instance's box (0 without the option).
+float leaf_bound(uint word) {
+  return uintBitsToFloat(texelFetch(instance_lists, int(word & ~SDF_LEAF_BIT) + 1).x);
+}
+
+// The scene distance at p (inside the hash box) from the instances the leaf `word` lists.
+SceneDistance leaf_distance(vec3 p, uint word) {
   int list = int(word & ~SDF_LEAF_BIT);
   uint count = texelFetch(instance_lists, list).x;
   SceneDistance best = SceneDistance(SDF_FAR, SDF_NONE, SDF_NONE);
   for (uint k = 0u; k < count; ++k) {
-    uint i = texelFetch(instance_lists, list + 1 + int(k)).x;
+    uint i = texelFetch(instance_lists, list + 2 + int(k)).x;
     int record = int(i) * SDF_INSTANCE_TEXELS;
     // Skip an instance whose box is no nearer than the best so far: its distance cannot win
     // (the CPU keeps the first strict minimum too), and its transform and triangles go unread.
@@ -171,3 +182,4 @@ SceneDistance scene_distance(vec3 p) {
   }
   return best;
 }
+

@@ -52,18 +52,44 @@ const uint MARCH_OUT_OF_STEPS = 2u;
 // distance at `t_last`, the last point queried (at a convergence: t). The end test allows one
 // epsilon past t1: a step that lands a rounding error beyond the box's far face (a wall lying on
 // it) would otherwise end the march in front of the surface.
+// --over-relax (Keinert et al. 2014), as SphereTracer::march: steps of omega x the distance while
+// the spheres at both ends of a step overlap; else back to the previous point's plain step, and
+// plain steps from then on.
 uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistance last, inout float t_last) {
   vec3 lo = sdf.hash_origin.xyz;
   vec3 hi = lo + vec3(sdf.hash_dims.xyz) * sdf.hash_origin.w;
+  float omega = sdf.options.x, t_previous = t, plain_previous = 0.0f, previous = 0.0f, step = 0.0f;
   for (; steps < sdf.hash_dims.w; ++steps) {
     float epsilon = hit_epsilon(ray, t);
     if (t > t1 + epsilon) return MARCH_LEFT;
     COUNT(COUNTER_STEPS, 1u);
     // Clamped: the clip's rounding can leave a point a hair outside the box, where a step would
     // be wasted (and wasted differently by sdf-cpu, so the counters would not agree).
-    SceneDistance d = scene_distance(clamp(ray.origin + t * ray.dir, lo, hi));
+    vec3 p = clamp(ray.origin + t * ray.dir, lo, hi);
+    vec3 leaf_lo, leaf_hi;
+    uint word = find_leaf(p, leaf_lo, leaf_hi);
+#ifdef SDF_CELL_BOUND
+    // No surface lies within `bound` of the leaf: the ray crosses it and goes the bound beyond its
+    // far side (still that far from any surface) without evaluating an instance.
+    float bound = leaf_bound(word);
+    if (bound > 0.0f) {
+      float t_in = t, t_out = 3.0e38f;
+      clip_to_box(ray.origin, ray.dir, leaf_lo, leaf_hi, t_in, t_out);
+      t = max(t, t_out) + bound;
+      t_previous = t;
+      plain_previous = previous = step = 0.0f;
+      continue;
+    }
+#endif
+    SceneDistance d = leaf_distance(p, word);
     last = d;
     t_last = t;
+    if (omega > 1.0f && d.distance + previous < step) {
+      t = t_previous + plain_previous;
+      omega = 1.0f;
+      step = 0.0f;
+      continue;
+    }
     // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
     if (d.distance < epsilon && d.triangle != SDF_NONE) {
       ++steps;
@@ -71,7 +97,12 @@ uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistan
     }
     // At least epsilon: where the ray enters the box, rounding can leave the point a hair
     // outside it, and a bound of ~1e-7 would not move t at all (the ray then stalls to a miss).
-    t += max(d.distance, epsilon);
+    float plain = max(d.distance, epsilon);
+    step = omega > 1.0f ? max(omega * d.distance, epsilon) : plain;
+    t_previous = t;
+    plain_previous = plain;
+    previous = d.distance;
+    t += step;
   }
   return t > t1 + hit_epsilon(ray, t) ? MARCH_LEFT : MARCH_OUT_OF_STEPS;
 }

@@ -30,7 +30,9 @@ SdfVkRenderer::SdfVkRenderer(std::string name, const BackendOptions& options)
     : name_(std::move(name)),
       options_(options),
       context_(VulkanContext::Options{options.device, options.validation}),
-      runner_(context_, compute_tile_kernels(context_, "sdf_trace.comp", options.kernel_defines), kSdfCounters, options.whitted_passes) {
+      runner_(context_, compute_tile_kernels(context_, "sdf_trace.comp",
+                                        (options.tracing.cell_bound ? "#define SDF_CELL_BOUND 1\n" : "") +
+                                            options.kernel_defines), kSdfCounters, options.whitted_passes) {
   sdf::validate(scene_hash_params_for(name_, options_));
 }
 
