@@ -155,7 +155,9 @@ float leaf_bound(uint word) {
   return uintBitsToFloat(texelFetch(instance_lists, int(word & ~SDF_LEAF_BIT) + 1).x);
 }
 
-// The scene distance at p (inside the hash box) from the instances the leaf `word` lists.
+// The scene distance at p (inside the hash box) from the instances the leaf `word` lists. (One
+// flattened loop over the instances and their entries, Aila & Laine 2009's answer to divergent
+// inner loops, gave the same results 6 % slower on lavapipe.)
 SceneDistance leaf_distance(vec3 p, uint word) {
   int list = int(word & ~SDF_LEAF_BIT);
   uint count = texelFetch(instance_lists, list).x;
