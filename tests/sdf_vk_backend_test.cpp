@@ -101,7 +101,7 @@ TEST(SdfOptions, OverRelaxationDrawsTheSameAndTracesAsTheCpu) {
 }
 
 TEST(SdfOptions, CellBoundSkipsInstancesAndDrawsTheSame) {
-  const Scene scene = make_thesis_scene({"teapot", 300, 2});
+  const Scene scene = make_thesis_scene({"teapot", 100, 2});
   for (const char* backend : {"sdf-octree", "sdf-hash"}) {
     SCOPED_TRACE(backend);
     BackendOptions plain_options, bounded;
