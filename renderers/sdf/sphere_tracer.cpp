@@ -52,7 +52,16 @@ SphereTracer::MarchEnd SphereTracer::march(const shading::Ray& ray, float t1, fl
   float omega = params_.over_relax, t_previous = t, plain_previous = 0.0f, previous = 0.0f, step = 0.0f;
   for (; steps < params_.max_steps; ++steps) {
     const float epsilon = epsilon_at(ray, t);
-    if (t > t1 + epsilon) return MarchEnd::left;
+    if (t > t1 + epsilon) {
+      // A relaxed step past the box's far side is unchecked: it may have jumped a surface there.
+      if (step > plain_previous) {
+        t = t_previous + plain_previous;
+        omega = 1.0f;
+        step = 0.0f;
+        continue;
+      }
+      return MarchEnd::left;
+    }
     // Clamped: the clip's rounding can leave a point a hair outside the box, where a step would
     // be wasted (and wasted differently by the kernels, so the counters would not agree).
     const SceneDistance d = traced_scene_distance(sdf_, scene_, culling_, glm::clamp(ray.origin + t * ray.dir, lo, hi));

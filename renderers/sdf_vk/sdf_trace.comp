@@ -61,7 +61,16 @@ uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistan
   float omega = sdf.options.x, t_previous = t, plain_previous = 0.0f, previous = 0.0f, step = 0.0f;
   for (; steps < sdf.hash_dims.w; ++steps) {
     float epsilon = hit_epsilon(ray, t);
-    if (t > t1 + epsilon) return MARCH_LEFT;
+    if (t > t1 + epsilon) {
+      // A relaxed step past the box's far side is unchecked: it may have jumped a surface there.
+      if (step > plain_previous) {
+        t = t_previous + plain_previous;
+        omega = 1.0f;
+        step = 0.0f;
+        continue;
+      }
+      return MARCH_LEFT;
+    }
     COUNT(COUNTER_STEPS, 1u);
     // Clamped: the clip's rounding can leave a point a hair outside the box, where a step would
     // be wasted (and wasted differently by sdf-cpu, so the counters would not agree).
