@@ -82,6 +82,13 @@ uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistan
     // far side (still that far from any surface) without evaluating an instance.
     float bound = leaf_bound(word);
     if (bound > 0.0f) {
+      // The bound is also this point's distance for the over-relaxation check of the step here.
+      if (omega > 1.0f && bound + previous < step) {
+        t = t_previous + plain_previous;
+        omega = 1.0f;
+        step = 0.0f;
+        continue;
+      }
       float t_in = t, t_out = 3.0e38f;
       clip_to_box(ray.origin, ray.dir, leaf_lo, leaf_hi, t_in, t_out);
       t = max(t, t_out) + bound;
