@@ -50,14 +50,17 @@ SphereTracer::MarchEnd SphereTracer::march(const shading::Ray& ray, float t1, fl
   // the distances at its two ends overlap (their union covers it); when they do not, the march
   // goes back to the previous point, takes its plain step, and steps plainly from then on.
   float omega = params_.over_relax, t_previous = t, plain_previous = 0.0f, previous = 0.0f, step = 0.0f;
+  const auto step_back = [&] {
+    t = t_previous + plain_previous;
+    omega = 1.0f;
+    step = 0.0f;
+  };
   for (; steps < params_.max_steps; ++steps) {
     const float epsilon = epsilon_at(ray, t);
     if (t > t1 + epsilon) {
       // A relaxed step past the box's far side is unchecked: it may have jumped a surface there.
       if (step > plain_previous) {
-        t = t_previous + plain_previous;
-        omega = 1.0f;
-        step = 0.0f;
+        step_back();
         continue;
       }
       return MarchEnd::left;
@@ -74,9 +77,7 @@ SphereTracer::MarchEnd SphereTracer::march(const shading::Ray& ray, float t1, fl
     last = d;
     t_last = t;
     if (omega > 1.0f && d.distance + previous < step) {
-      t = t_previous + plain_previous;
-      omega = 1.0f;
-      step = 0.0f;
+      step_back();
       continue;
     }
     // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.

@@ -52,6 +52,13 @@ const uint MARCH_OUT_OF_STEPS = 2u;
 // distance at `t_last`, the last point queried (at a convergence: t). The end test allows one
 // epsilon past t1: a step that lands a rounding error beyond the box's far face (a wall lying on
 // it) would otherwise end the march in front of the surface.
+// --over-relax's fallback: back to the previous point's plain step, plain steps from then on.
+void step_back(inout float t, inout float omega, inout float step, float t_previous, float plain_previous) {
+  t = t_previous + plain_previous;
+  omega = 1.0f;
+  step = 0.0f;
+}
+
 // --over-relax (Keinert et al. 2014), as SphereTracer::march: steps of omega x the distance while
 // the spheres at both ends of a step overlap; else back to the previous point's plain step, and
 // plain steps from then on.
@@ -64,9 +71,7 @@ uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistan
     if (t > t1 + epsilon) {
       // A relaxed step past the box's far side is unchecked: it may have jumped a surface there.
       if (step > plain_previous) {
-        t = t_previous + plain_previous;
-        omega = 1.0f;
-        step = 0.0f;
+        step_back(t, omega, step, t_previous, plain_previous);
         continue;
       }
       return MARCH_LEFT;
@@ -84,9 +89,7 @@ uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistan
     if (bound > 0.0f) {
       // The bound is also this point's distance for the over-relaxation check of the step here.
       if (omega > 1.0f && bound + previous < step) {
-        t = t_previous + plain_previous;
-        omega = 1.0f;
-        step = 0.0f;
+        step_back(t, omega, step, t_previous, plain_previous);
         continue;
       }
       float t_in = t, t_out = 3.0e38f;
@@ -101,9 +104,7 @@ uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistan
     last = d;
     t_last = t;
     if (omega > 1.0f && d.distance + previous < step) {
-      t = t_previous + plain_previous;
-      omega = 1.0f;
-      step = 0.0f;
+      step_back(t, omega, step, t_previous, plain_previous);
       continue;
     }
     // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
