@@ -10,6 +10,7 @@
 
 #include "scenes/error.h"
 #include "util/atomic_file.h"
+#include "util/fnv1a.h"
 
 namespace sdfbench {
 namespace {
@@ -43,7 +44,8 @@ Measurement error_row(const BenchConfig& c, size_t index, const BenchSettings& s
 // A resumed file must hold rows of this very run: each row the configuration its run_index
 // names in this plan, equal in every key column, and none twice. Anything else (a sweep's CSV
 // resumed as a table, other flags) would mix measurements of different settings in one file.
-std::set<std::string> resumed_keys(const CsvTable& table, const std::vector<BenchConfig>& plan, const BenchSettings& settings) {
+std::set<std::string> resumed_keys(const CsvTable& table, const std::vector<BenchConfig>& plan, const BenchSettings& settings,
+                                   const std::string& run_id) {
   const std::string file = "--resume: '" + table.source + "'";
   const std::string advice = ": it belongs to another run; resume with the flags of the run that wrote it, or use a new --csv";
   std::set<std::string> keys;
@@ -64,6 +66,11 @@ std::set<std::string> resumed_keys(const CsvTable& table, const std::vector<Benc
     if (!keys.insert(configuration_key(table.rows[r], table.columns)).second)
       throw Error(file + row + " measures run_index " + std::to_string(index) + " again; use a new --csv");
   }
+  // Every row the configuration at its place, but a run of another list (e.g. more backends).
+  for (size_t r = 0; r < table.rows.size(); ++r)
+    if (const std::string& theirs = table.rows[r][table.column("run_id")]; theirs != run_id)
+      throw Error(file + " row " + std::to_string(r + 1) + " comes from a run of another configuration list (run_id '" + theirs +
+                  "', this run's is '" + run_id + "')" + advice);
   return keys;
 }
 
@@ -111,9 +118,18 @@ template std::vector<float> parse_list<float>(const std::string&, const std::str
 template std::vector<unsigned> parse_list<unsigned>(const std::string&, const std::string&);
 template std::vector<size_t> parse_list<size_t>(const std::string&, const std::string&);
 
+std::string plan_run_id(const std::vector<BenchConfig>& plan, const BenchSettings& settings) {
+  uint64_t hash = fnv1a64(std::to_string(plan.size()));
+  for (size_t i = 0; i < plan.size(); ++i) hash = fnv1a64(configuration_key(configuration_fields(plan[i], i, settings)) + '\n', hash);
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
 CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner, const PlanOptions& options) {
   CsvTable table;
   table.columns = measurement_columns();
+  const std::string run_id = plan_run_id(plan, runner.settings());
   std::optional<OutputLock> lock;  // held for the whole run: another run on this CSV would replace its rows
   std::set<std::string> done;
   if (!options.csv.empty()) {
@@ -123,7 +139,7 @@ CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner,
       table = read_csv(options.csv);
       if (table.columns != measurement_columns())
         throw Error("--resume: '" + options.csv + "' has other columns than this sdfbench writes; use a new --csv file");
-      done = resumed_keys(table, plan, runner.settings());
+      done = resumed_keys(table, plan, runner.settings(), run_id);
     } else if (!options.resume && std::filesystem::exists(options.csv)) {
       std::cerr << "note: overwriting '" << options.csv << "' (--resume continues a file instead)\n";
     }
@@ -152,6 +168,7 @@ CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner,
       m = error_row(config, todo[k], runner.settings(), e.what());
       std::cerr << "  error: " << e.what() << "\n";
     }
+    m.run_id = run_id;
     std::printf("  %-10s %-8s %9.3f ms  %8.2f FPS  %7.3f Mrays/s  %s%s\n", m.backend.c_str(), m.mode.c_str(), m.ms_median,
                 m.fps, m.mrays_per_s, m.agreement.c_str(), m.budget_cut ? "  (budget cut)" : "");
     std::fflush(stdout);

@@ -26,6 +26,10 @@ struct PlanOptions {
   Shard shard;
 };
 
+// The run's id (CSV column run_id): a digest of every configuration's key in the whole plan,
+// so all shards of one run share it and a run with any other setting or list has another.
+std::string plan_run_id(const std::vector<BenchConfig>& plan, const BenchSettings& settings);
+
 // Returns the CSV table of this run's rows (those resumed from the file included).
 CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner, const PlanOptions& options);
 

@@ -1,5 +1,5 @@
-// `sdfbench merge`: join the CSVs of shards (or of separate runs) into one, checking that they
-// have the same columns, valid run indices and do not measure the same configuration twice.
+// `sdfbench merge`: join the CSVs of one run's shards into one, checking that they have the
+// same columns and run id, valid run indices, and do not measure a configuration twice.
 #include <algorithm>
 #include <iostream>
 #include <map>
@@ -19,11 +19,24 @@ struct MergeArgs {
   std::string csv, markdown;
 };
 
+// The rows of one run only: a shard file left from an earlier run with other settings (same
+// file name, same shard count) must not slip into the merge. CSVs from before run_id have none.
+void check_same_run(const CsvTable& t, const CsvTable& first) {
+  const auto has_run_id = [](const CsvTable& c) { return std::find(c.columns.begin(), c.columns.end(), "run_id") != c.columns.end(); };
+  if (!has_run_id(t) || t.rows.empty() || first.rows.empty()) return;
+  const size_t column = t.column("run_id");
+  for (const auto& row : t.rows)
+    if (row[column] != first.rows.front()[column])
+      throw Error("'" + t.source + "' is not from the run of '" + first.source + "' (run_id '" + row[column] +
+                  "' vs '" + first.rows.front()[column] + "'): " + run_difference(first, t) +
+                  "; merge the shards of one run (a shard folder may hold files of an earlier run)");
+}
+
 void run_merge(const MergeArgs& args) {
   check_output_path(args.csv, "--csv");
   if (!args.markdown.empty()) check_output_path(args.markdown, "--markdown");
   const OutputLock lock(args.csv, "--csv");  // not while a table or sweep is writing it
-  CsvTable merged;
+  CsvTable merged, first;
   std::vector<std::pair<size_t, std::vector<std::string>>> rows;  // run_index, fields
   std::map<std::string, std::string> seen;                         // configuration key -> file
   for (const std::string& path : args.inputs) {
@@ -31,6 +44,8 @@ void run_merge(const MergeArgs& args) {
     if (merged.columns.empty()) merged.columns = t.columns;
     if (t.columns != merged.columns)
       throw Error("'" + path + "' has other columns than '" + args.inputs.front() + "': cannot merge them");
+    if (first.rows.empty()) first = t;
+    check_same_run(t, first);
     const size_t scene = t.column("scene"), backend = t.column("backend"), mode = t.column("mode");
     for (size_t r = 0; r < t.rows.size(); ++r) {
       const size_t index = row_run_index(t, r, path);
@@ -44,10 +59,23 @@ void run_merge(const MergeArgs& args) {
   }
   // Back in the order of the unsharded run.
   std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  size_t missing = 0, first_missing = 0;  // below the largest index: a shard not (yet) finished
+  for (size_t i = 1; i < rows.size(); ++i) {
+    const size_t before = rows[i - 1].first, index = rows[i].first;
+    if (index == before)
+      throw Error("run_index " + std::to_string(index) + " is in the inputs twice, with other configurations: they are not the shards of one run");
+    if (index > before + 1) {
+      if (missing == 0) first_missing = before + 1;
+      missing += index - before - 1;
+    }
+  }
   for (auto& row : rows) merged.rows.push_back(std::move(row.second));
   write_csv(args.csv, merged);
   write_markdown(args.markdown, merged);
   std::cout << "merged " << merged.rows.size() << " rows from " << args.inputs.size() << " files into " << args.csv << "\n";
+  if (missing)
+    std::cerr << "note: " << missing << " configuration(s) below the last run_index are missing (first: run_index "
+              << first_missing << "): is a shard unfinished?\n";
 }
 
 }  // namespace

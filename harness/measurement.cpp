@@ -3,6 +3,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <optional>
+#include <set>
 
 #include "scenes/error.h"
 
@@ -30,7 +33,7 @@ const std::vector<std::string> kKeyColumns = {
 
 const std::vector<std::string>& measurement_columns() {
   static const std::vector<std::string> columns = {
-      "run_index", "table", "scene", "mesh", "triangles", "objects", "backend", "mode", "max_depth", "width", "height",
+      "run_index", "run_id", "table", "scene", "mesh", "triangles", "objects", "backend", "mode", "max_depth", "width", "height",
       "hash_cell", "octree_depth", "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent", "hit",
       "max_steps", "hit_epsilon", "hit_footprint", "over_relax", "cell_bound", "requested_frames", "warmup", "budget_s", "reference",
       "requested_device", "whitted_passes", "validate", "frames", "clock", "ms_median", "ms_min", "ms_max",
@@ -41,7 +44,7 @@ const std::vector<std::string>& measurement_columns() {
 }
 
 std::vector<std::string> to_csv_fields(const Measurement& m) {
-  return {std::to_string(m.run_index), m.table, m.scene, m.mesh, std::to_string(m.triangles), std::to_string(m.objects),
+  return {std::to_string(m.run_index), m.run_id, m.table, m.scene, m.mesh, std::to_string(m.triangles), std::to_string(m.objects),
           m.backend, m.mode, std::to_string(m.max_depth), std::to_string(m.width), std::to_string(m.height),
           number(m.hash_cell), number(m.octree_depth), number(m.octree_min_objects), number(m.octree_min_size), m.lists,
           number(m.mesh_cell), number(m.cells_per_extent), m.hit, number(m.max_steps), number(m.hit_epsilon),
@@ -66,6 +69,38 @@ std::string configuration_key(const std::vector<std::string>& fields, const std:
 std::string configuration_key(const Measurement& m) { return configuration_key(to_csv_fields(m), measurement_columns()); }
 
 const std::vector<std::string>& configuration_key_columns() { return kKeyColumns; }
+
+std::string run_difference(const CsvTable& a, const CsvTable& b) {
+  const std::string in_a = " in '" + a.source + "', ", in_b = " in '" + b.source + "'";
+  std::map<size_t, size_t> rows_of_b;  // run_index -> row
+  for (size_t r = 0; r < b.rows.size(); ++r) rows_of_b.emplace(row_run_index(b, r, b.source), r);
+  for (size_t r = 0; r < a.rows.size(); ++r) {
+    const auto it = rows_of_b.find(row_run_index(a, r, a.source));
+    if (it == rows_of_b.end()) continue;
+    for (const std::string& name : kKeyColumns) {
+      const std::string &x = a.rows[r][a.column(name)], &y = b.rows[it->second][b.column(name)];
+      if (x != y) return "run_index " + std::to_string(it->first) + " has " + name + " '" + x + "'" + in_a + "'" + y + "'" + in_b;
+    }
+  }
+  auto uniform = [](const CsvTable& t, size_t column) -> std::optional<std::string> {
+    for (const auto& row : t.rows)
+      if (row[column] != t.rows.front()[column]) return std::nullopt;
+    return t.rows.empty() ? std::nullopt : std::optional(t.rows.front()[column]);
+  };
+  // Run-wide settings first; any other column (backend, scene, a sweep axis) may just be what
+  // one shard of a run holds, so it is only an example.
+  const std::set<std::string> run_wide = {"width", "height", "max_depth", "requested_frames", "warmup", "budget_s", "check_size",
+                                          "reference", "requested_device", "whitted_passes", "validate", "threads"};
+  std::string example;
+  for (const std::string& name : kKeyColumns) {
+    const auto x = uniform(a, a.column(name)), y = uniform(b, b.column(name));
+    if (!x || !y || *x == *y) continue;
+    const std::string difference = name + " '" + *x + "'" + in_a + "'" + *y + "'" + in_b;
+    if (run_wide.count(name)) return difference;
+    if (example.empty()) example = " (e.g. " + difference + ")";
+  }
+  return "they list other configurations" + example;
+}
 
 size_t row_run_index(const CsvTable& table, size_t row, const std::string& source) {
   const std::string& text = table.rows.at(row)[table.column("run_index")];

@@ -12,6 +12,7 @@ namespace sdfbench {
 struct Measurement {
   // configuration
   size_t run_index = 0;  // position in the run's configuration list (shards and merge keep it)
+  std::string run_id;    // digest of the run's whole configuration list: every shard of one run has it
   std::string table;     // thesis table this row reproduces ("6.1", "6.2", "6.3"), "sweep", or empty
   std::string scene, mesh;
   size_t triangles = 0, objects = 0;
@@ -58,6 +59,11 @@ std::vector<std::string> to_csv_fields(const Measurement& m);
 const std::vector<std::string>& configuration_key_columns();
 std::string configuration_key(const std::vector<std::string>& fields, const std::vector<std::string>& columns);
 std::string configuration_key(const Measurement& m);
+
+// What separates the rows of two runs (for messages, when their run_ids differ): the first key
+// column that differs at a run_index both have, else a run-wide setting that differs ("width
+// '32' in 'a.csv', '320' in 'b.csv'"), else that they list other configurations (an example).
+std::string run_difference(const CsvTable& a, const CsvTable& b);
 
 // Row `row` (0-based) of `table`'s run_index; throws Error naming `source`, the row and the
 // column when it is not a non-negative integer.

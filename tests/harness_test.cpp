@@ -193,6 +193,19 @@ TEST(SweepCommand, ShardsMergeToTheUnshardedRows) {
   test::CommandResult bad = test::run_sdfbench("merge " + s1.string() + " " + all.string() + " --csv " + merged.string());
   EXPECT_EQ(bad.exit_code, 1) << bad.output;
   EXPECT_NE(bad.output.find("both measure"), std::string::npos) << bad.output;
+  // A shard of another run (other --budget-s: same file name in a reused shard folder) is refused,
+  // naming both files and the difference; all shards of one run share their run_id.
+  const auto other = dir.path() / "other.csv";
+  ASSERT_EQ(test::run_sdfbench(kSweep + " --budget-s 100 --shard 2/2 --csv " + other.string()).exit_code, 0);
+  const CsvTable a = read_csv(s1), b = read_csv(s2), c = read_csv(other);
+  EXPECT_EQ(a.rows[0][a.column("run_id")], b.rows[0][b.column("run_id")]);
+  EXPECT_EQ(a.rows[0][a.column("run_id")], full.rows[0][full.column("run_id")]);
+  EXPECT_NE(a.rows[0][a.column("run_id")], c.rows[0][c.column("run_id")]);
+  bad = test::run_sdfbench("merge " + s1.string() + " " + other.string() + " --csv " + merged.string());
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  for (const std::string& words : {"'" + other.string() + "' is not from the run of '" + s1.string() + "'",
+                                   std::string("budget_s '300' in '") + s1.string() + "', '100' in '" + other.string() + "'"})
+    EXPECT_NE(bad.output.find(words), std::string::npos) << words << "\n" << bad.output;
   const auto foreign = dir.write("foreign.csv", "a,b\n1,2\n");
   bad = test::run_sdfbench("merge " + s1.string() + " " + foreign.string() + " --csv " + merged.string());
   EXPECT_EQ(bad.exit_code, 1) << bad.output;

@@ -291,6 +291,8 @@ TEST(OutputSafety, ResumeRefusesRowsOfAnotherRun) {
       // Other structure lists: configuration 1 is depth 1 there, depth 2 here.
       {{"--octree-depth", "0,2"}, "row 2 (run_index 1) was measured with octree_depth '1', this run asks for '2'"},
       {{"--octree-depth", "0"}, "row 2 has run_index 1, but this run has 1 configurations"},
+      // The same two configurations at the same places, in a longer list.
+      {{"--octree-depth", "0,1,2"}, "row 1 comes from a run of another configuration list (run_id '"},
   };
   for (const auto& [flag, words] : cases)
     expect_user_error(sweep({flag, {"--csv", csv.string()}, {"--resume", ""}}), {words, "belongs to another run"});
@@ -358,10 +360,17 @@ TEST(OutputSafety, MergeRefusesABadRunIndexNamingFileRowAndColumn) {
   const test::CommandResult ok =
       sdfbench("merge " + file_with("b", "7").string() + " " + file_with("a", "3").string() + " --csv " + out.string());
   ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("note: 3 configuration(s) below the last run_index are missing (first: run_index 4)"), std::string::npos)
+      << ok.output;
   const CsvTable merged = read_csv(out);
   ASSERT_EQ(merged.rows.size(), 2u);
   EXPECT_EQ(merged.rows[0][merged.column("scene")], "a");
   EXPECT_EQ(merged.rows[1][merged.column("run_index")], "7");
+  // One place of the run measured twice, as two configurations: not the shards of one run.
+  fs::remove(out);
+  expect_user_error("merge " + file_with("c", "3").string() + " " + file_with("a", "3").string() + " --csv " + out.string(),
+                    "run_index 3 is in the inputs twice, with other configurations");
+  EXPECT_FALSE(fs::exists(out));
 }
 
 // Class 4: the AOV file must hold all 7 channels.

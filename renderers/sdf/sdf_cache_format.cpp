@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "scenes/error.h"
+#include "util/fnv1a.h"
 
 namespace sdfbench::sdf {
 namespace {
@@ -307,11 +308,6 @@ SceneHash read_hash(const Reader& r, const SceneHashParams& params, uint32_t ins
 }
 
 }  // namespace
-
-uint64_t fnv1a64(std::span<const std::byte> bytes, uint64_t hash) {
-  for (std::byte b : bytes) hash = (hash ^ static_cast<uint64_t>(b)) * 0x100000001b3ull;
-  return hash;
-}
 
 void reseal_sdf_cache(std::span<std::byte> bytes) {
   if (bytes.size() < sizeof(uint64_t)) return;

@@ -56,9 +56,6 @@ std::vector<std::byte> encode_sdf_cache(const SdfCacheContents& contents);
 // index out of range, ...). `source` names the file in messages.
 SdfCacheContents decode_sdf_cache(std::span<const std::byte> bytes, const std::string& source);
 
-// FNV-1a 64: any single changed byte changes it (each step is a bijection of the state).
-uint64_t fnv1a64(std::span<const std::byte> bytes, uint64_t hash = 0xcbf29ce484222325ull);
-
 // Recomputes the trailing checksum in place (the fuzz target uses it to get past the checksum
 // and exercise the structural checks).
 void reseal_sdf_cache(std::span<std::byte> bytes);
