@@ -2,8 +2,9 @@
 # Starts a single-node Slurm cluster on this machine for the Slurm test: installs slurm-wlm and
 # munge (no recommends), writes slurm.conf from `slurmd -C` into $1 (proctrack/linuxproc,
 # task/none, no cgroups, no accounting; its own ports, state and spool under $1, so no system
-# config changes), starts munged (as the munge user, /run/munge created) unless one answers,
-# then slurmctld and slurmd, and waits until the node is idle. Prints the SLURM_CONF to export.
+# config changes; the daemons talk over 127.0.0.1, so the host name need not resolve), starts
+# munged (as the munge user, /run/munge created) unless one answers, then slurmctld and slurmd,
+# and waits until the node is idle. Prints the SLURM_CONF to export.
 # tests/slurm/stop_cluster.sh $1 stops what this started, by its pid files.
 set -euo pipefail
 dir=${1:?usage: start_cluster.sh DIR}
@@ -36,7 +37,7 @@ node=$(sed -n 's/^NodeName=\([^ ]*\).*/\1/p' <<<"$node_line")
 mkdir -p "$dir/state" "$dir/spool"
 cat >"$dir/slurm.conf" <<CONF
 ClusterName=sdfbench-test
-SlurmctldHost=$node
+SlurmctldHost=$node(127.0.0.1)
 SlurmctldPort=16817
 SlurmdPort=16818
 SlurmUser=root
@@ -56,7 +57,7 @@ SlurmctldPidFile=$dir/slurmctld.pid
 SlurmdPidFile=$dir/slurmd.pid
 SlurmctldLogFile=$dir/slurmctld.log
 SlurmdLogFile=$dir/slurmd.log
-$node_line State=UNKNOWN
+$node_line NodeAddr=127.0.0.1 State=UNKNOWN
 PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 CONF
 export SLURM_CONF="$dir/slurm.conf"
