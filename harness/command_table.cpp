@@ -6,13 +6,14 @@
 #include "harness/thesis_tables.h"
 #include "scenes/error.h"
 #include "scenes/mesh.h"
+#include "scenes/mesh_resize.h"
 
 namespace sdfbench {
 namespace {
 
 struct TableArgs {
   std::string tables = "all", size, meshes = "bunny,teapot,monkey,sphere", objects = "1,10,100,1000",
-              backends = "embree,tri-aabb,bvh,vk-rt,sdf-hash,sdf-octree", mode;
+              backends = "embree,tri-aabb,bvh,vk-rt,sdf-hash,sdf-octree", mode, triangles;
   unsigned max_depth = 4;
   bool quick = false;
   RunOptions run;
@@ -35,6 +36,17 @@ std::vector<BenchConfig> table_plan(const TableArgs& args) {
   const std::vector<std::string> meshes = split_list(args.meshes, "--meshes");
   for (const std::string& mesh : meshes)
     if (builtin_mesh_path(mesh).empty()) throw Error("--meshes: '" + mesh + "' is not a thesis mesh (bunny, teapot, monkey, sphere)");
+  // --triangles: every mesh at each size (thesis:<mesh>@<n>:<count>), the mesh-size axis.
+  std::vector<std::string> mesh_specs;
+  for (const std::string& mesh : meshes) {
+    if (args.triangles.empty()) mesh_specs.push_back(mesh);
+    for (const uint32_t n : args.triangles.empty() ? std::vector<uint32_t>{} : parse_list<uint32_t>(args.triangles, "--triangles")) {
+      if (n < kMinResizedTriangles || n > kMaxResizedTriangles)
+        throw Error("--triangles: " + std::to_string(n) + " is outside " + std::to_string(kMinResizedTriangles) + ".." +
+                    std::to_string(kMaxResizedTriangles));
+      mesh_specs.push_back(mesh + "@" + std::to_string(n));
+    }
+  }
   const std::vector<size_t> counts = parse_list<size_t>(args.objects, "--objects");
   const std::vector<std::string> backends = split_list(args.backends, "--backends");
   // Unknown names fail here, before hours of work; a device a backend cannot use (vk-rt without
@@ -43,7 +55,7 @@ std::vector<BenchConfig> table_plan(const TableArgs& args) {
   const ImageSize size = parse_size(args.size.empty() ? (args.quick ? "160x90" : "1280x720") : args.size);
 
   std::vector<BenchConfig> plan;
-  for (const std::string& mesh : meshes)
+  for (const std::string& mesh : mesh_specs)
     for (size_t count : counts) {
       if (count == 0) throw Error("--objects: counts must be >= 1");
       for (RenderMode mode : modes)
@@ -86,6 +98,8 @@ void register_table_command(CLI::App& app) {
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT (default 1280x720, the thesis'; --quick: 160x90)");
   cmd->add_option("--meshes", args->meshes, "thesis meshes")->capture_default_str();
   cmd->add_option("--objects", args->objects, "object counts")->capture_default_str();
+  cmd->add_option("--triangles", args->triangles,
+                  "mesh sizes: every mesh resized to each of these triangle counts (e.g. 1000,16000,256000; default: as they are)");
   cmd->add_option("--backends", args->backends, "backends run in every table's mode")->capture_default_str();
   cmd->add_option("--mode", args->mode, "run every table in this mode instead of the thesis' (whitted for 6.1/6.2, shadow for 6.3)");
   cmd->add_option("--max-depth", args->max_depth, "whitted recursion depth")->capture_default_str()->check(CLI::Range(0u, 16u));

@@ -8,7 +8,9 @@
 #include <glm/gtc/constants.hpp>
 
 #include "scenes/error.h"
+#include "scenes/mesh_resize.h"
 #include "scenes/random.h"
+#include "scenes/sized_mesh.h"
 
 namespace sdfbench {
 namespace {
@@ -64,9 +66,16 @@ ThesisLayoutSpec parse_thesis_spec(const std::string& spec) {
     start = colon + 1;
   }
   if (parts.size() < 3 || parts.size() > 4 || parts[0] != "thesis")
-    throw Error("scene '" + spec + "': expected thesis:<mesh>:<count>[:seed], e.g. thesis:bunny:100");
+    throw Error("scene '" + spec + "': expected thesis:<mesh>[@<triangles>]:<count>[:seed], e.g. thesis:bunny:100");
   ThesisLayoutSpec result;
   result.mesh = parts[1];
+  if (const size_t at = result.mesh.find('@'); at != std::string::npos) {
+    result.triangles = parse_number<uint32_t>(result.mesh.substr(at + 1), spec, "triangle count");
+    result.mesh.resize(at);
+    if (result.triangles < kMinResizedTriangles || result.triangles > kMaxResizedTriangles)
+      throw Error("scene '" + spec + "': triangle count must be between " + std::to_string(kMinResizedTriangles) + " and " +
+                  std::to_string(kMaxResizedTriangles));
+  }
   if (builtin_mesh_path(result.mesh).empty())
     throw Error("scene '" + spec + "': unknown mesh '" + result.mesh + "' (expected bunny, teapot, monkey or sphere)");
   result.count = parse_number<uint32_t>(parts[2], spec, "count");
@@ -78,8 +87,9 @@ ThesisLayoutSpec parse_thesis_spec(const std::string& spec) {
 
 Scene make_thesis_scene(const ThesisLayoutSpec& spec) {
   Scene scene;
-  scene.name = "thesis:" + spec.mesh + ":" + std::to_string(spec.count) + ":" + std::to_string(spec.seed);
-  scene.meshes.push_back(load_obj(builtin_mesh_path(spec.mesh), spec.mesh));
+  const std::string mesh_spec = spec.mesh + (spec.triangles ? "@" + std::to_string(spec.triangles) : "");
+  scene.name = "thesis:" + mesh_spec + ":" + std::to_string(spec.count) + ":" + std::to_string(spec.seed);
+  scene.meshes.push_back(spec.triangles ? load_sized_mesh(spec.mesh, spec.triangles) : load_obj(builtin_mesh_path(spec.mesh), spec.mesh));
   add_materials(scene);
   const Mesh& mesh = scene.meshes[0];
   const float mesh_radius = 0.5f * glm::length(mesh.bounds.extent());

@@ -14,7 +14,7 @@ packages=(
   libembree-dev libtbb-dev
   libopenimageio-dev openimageio-tools
   libbenchmark-dev libgtest-dev
-  libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libmeshoptimizer-dev
+  libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libmeshoptimizer-dev libopenmesh-dev
   python3-matplotlib
 )
 # Installed from bookworm-backports (libdrm at the version that Mesa 25 needs).

@@ -1,0 +1,23 @@
+#pragma once
+// Built-in meshes at a chosen size (scenes/mesh_resize.h), cached on disk: making a 1M-triangle
+// mesh takes seconds, reading it back less. The folder is $SDFBENCH_MESH_CACHE, else
+// $XDG_CACHE_HOME/sdfbench/meshes, else ~/.cache/sdfbench/meshes. A file is named by mesh, size
+// and a digest of the source OBJ and the generator's version, written atomically (never half a
+// file), and made again when it does not read back as what its name says. Not committed.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "scenes/mesh.h"
+
+namespace sdfbench {
+
+// The cache folder (created on first use); empty when none can be named (no HOME).
+std::filesystem::path mesh_cache_dir();
+
+// Built-in mesh `name` ("bunny") at `triangles` (within kResizeTolerance). Prints a line on
+// stderr when it generates one. Throws Error like resize_mesh, or naming the cache file when it
+// cannot be written.
+Mesh load_sized_mesh(const std::string& name, uint32_t triangles);
+
+}  // namespace sdfbench

@@ -1,0 +1,158 @@
+// The mesh-size axis' meshes: resize_mesh (Loop subdivision + simplification) is deterministic,
+// hits the requested count within kResizeTolerance and keeps the shape; `thesis:<mesh>@<n>:<count>`
+// specs; the on-disk cache (written once, read back identical, a damaged file made again).
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "harness/csv.h"
+#include "renderers/sdf/mesh_distance_grid.h"
+#include "scenes/error.h"
+#include "scenes/mesh_resize.h"
+#include "scenes/sized_mesh.h"
+#include "scenes/thesis_layout.h"
+#include "tests/test_support.h"
+
+namespace sdfbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+Mesh thesis_mesh(const std::string& name) { return load_obj(builtin_mesh_path(name), name); }
+
+// Each test process gets its own cache folder (the user's ~/.cache stays untouched).
+class SizedMesh : public ::testing::Test {
+ protected:
+  void SetUp() override { ::setenv("SDFBENCH_MESH_CACHE", (dir_.path() / "cache").c_str(), 1); }
+  test::TempDir dir_;
+};
+
+TEST(MeshResize, GivesTheRequestedCountWithinTheToleranceOnEveryThesisMesh) {
+  for (const std::string& name : thesis_mesh_names()) {
+    const Mesh base = thesis_mesh(name);
+    for (uint32_t target : {500u, 3000u, 20000u}) {  // simplified only; both; subdivided twice then simplified
+      const Mesh m = resize_mesh(base, target);
+      EXPECT_NEAR(static_cast<double>(m.triangle_count()), target, kResizeTolerance * target) << name << "@" << target;
+      EXPECT_EQ(m.name, name + "@" + std::to_string(target));
+      EXPECT_EQ(m.normals.size(), m.positions.size());
+      for (const glm::uvec3& t : m.triangles) ASSERT_TRUE(t.x < m.positions.size() && t.y < m.positions.size() && t.z < m.positions.size());
+      // The same shape: Loop subdivision pulls the surface in a little, simplification barely moves it.
+      const glm::vec3 extent = base.bounds.extent();
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_NEAR(m.bounds.min[a], base.bounds.min[a], 0.05f * extent[a]) << name << "@" << target << " axis " << a;
+        EXPECT_NEAR(m.bounds.max[a], base.bounds.max[a], 0.05f * extent[a]) << name << "@" << target << " axis " << a;
+      }
+    }
+  }
+}
+
+TEST(MeshResize, IsDeterministic) {
+  const Mesh base = thesis_mesh("bunny");
+  const Mesh a = resize_mesh(base, 12000), b = resize_mesh(base, 12000);
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.triangles, b.triangles);
+}
+
+// Subdivision keeps a closed mesh closed; the simplifier can pinch an edge now and then (known:
+// sphere@30000, 2 edges), at most a trace of the mesh.
+TEST(MeshResize, ClosedMeshesStayClosedButForATrace) {
+  for (const char* name : {"bunny", "sphere"}) {
+    const Mesh base = thesis_mesh(name);
+    ASSERT_EQ(sdf::open_edge_count(base), 0u) << name;
+    for (uint32_t t : {static_cast<uint32_t>(base.triangle_count() * 4), static_cast<uint32_t>(base.triangle_count() * 64)})
+      EXPECT_EQ(sdf::open_edge_count(resize_mesh(base, t)), 0u) << name << "@" << t << ": subdivided only";
+    for (uint32_t t : {1000u, 4000u, 30000u}) {
+      const size_t open = sdf::open_edge_count(resize_mesh(base, t));
+      EXPECT_LE(open * 10000, 3u * t) << name << "@" << t << ": " << open << " open edges";  // < 0.01 % of the edges
+      if (std::string(name) == "bunny") {
+        EXPECT_EQ(open, 0u) << name << "@" << t;
+      }
+    }
+  }
+}
+
+TEST(MeshResize, CountsOutsideTheRangeAreErrors) {
+  const Mesh base = thesis_mesh("sphere");
+  EXPECT_THROW(resize_mesh(base, kMinResizedTriangles - 1), Error);
+  EXPECT_THROW(resize_mesh(base, kMaxResizedTriangles + 1), Error);
+}
+
+TEST_F(SizedMesh, ThesisSpecsNameTheSize) {
+  const ThesisLayoutSpec spec = parse_thesis_spec("thesis:bunny@2000:3:7");
+  EXPECT_EQ(spec.mesh, "bunny");
+  EXPECT_EQ(spec.triangles, 2000u);
+  EXPECT_EQ(spec.count, 3u);
+  EXPECT_EQ(parse_thesis_spec("thesis:bunny:3").triangles, 0u);
+  const Scene scene = make_thesis_scene(spec);
+  EXPECT_EQ(scene.name, "thesis:bunny@2000:3:7");
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  EXPECT_EQ(scene.meshes[0].name, "bunny@2000");
+  EXPECT_NEAR(static_cast<double>(scene.meshes[0].triangle_count()), 2000.0, kResizeTolerance * 2000);
+  // The layout does not depend on the mesh's size: same positions as the plain mesh's scene.
+  const Scene plain = make_thesis_scene(parse_thesis_spec("thesis:bunny:3:7"));
+  ASSERT_EQ(plain.instances.size(), scene.instances.size());
+  for (size_t i = 0; i < plain.instances.size(); ++i)
+    EXPECT_NEAR(glm::length(plain.instances[i].transform.translation - scene.instances[i].transform.translation), 0.0f, 0.5f);
+  for (const char* bad : {"thesis:bunny@:3", "thesis:bunny@abc:3", "thesis:bunny@99:3", "thesis:bunny@2000001:1",
+                          "thesis:bunny@-5:1", "thesis:rabbit@1000:1"}) {
+    try {
+      parse_thesis_spec(bad);
+      ADD_FAILURE() << bad << " parsed";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST_F(SizedMesh, CacheIsWrittenOnceAndReadBackIdentical) {
+  const Mesh first = load_sized_mesh("teapot", 9000);
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(mesh_cache_dir())) files.push_back(e.path());
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_NE(files[0].filename().string().find("teapot@9000-"), std::string::npos) << files[0];
+  const auto written = fs::last_write_time(files[0]);
+  const Mesh again = load_sized_mesh("teapot", 9000);
+  EXPECT_EQ(fs::last_write_time(files[0]), written);  // read, not made again
+  EXPECT_EQ(first.positions, again.positions);
+  EXPECT_EQ(first.triangles, again.triangles);
+  // A fresh generation (no cache) gives the same mesh as the cached one.
+  const Mesh fresh = resize_mesh(thesis_mesh("teapot"), 9000);
+  EXPECT_EQ(fresh.positions, first.positions);
+  EXPECT_EQ(fresh.triangles, first.triangles);
+
+  // A damaged (truncated) cache file is made again.
+  fs::resize_file(files[0], fs::file_size(files[0]) / 2);
+  const Mesh repaired = load_sized_mesh("teapot", 9000);
+  EXPECT_EQ(repaired.triangles, first.triangles);
+  EXPECT_EQ(fs::file_size(files[0]) > 0, true);
+  EXPECT_EQ(load_obj(files[0], "x").triangle_count(), first.triangle_count());
+}
+
+// The axis in `table`: one row per size with the real triangle count; bad sizes are one-line errors.
+TEST_F(SizedMesh, TableTrianglesIsTheMeshSizeAxis) {
+  const fs::path csv = dir_.path() / "sizes.csv";
+  const test::CommandResult r = test::run_sdfbench(
+      "table --table 6.3 --meshes sphere --triangles 200,800 --objects 1 --backends embree,bvh --size 32x18 --check-size 32x18 "
+      "--frames 1 --warmup 0 --csv " + csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const CsvTable t = read_csv(csv);
+  ASSERT_EQ(t.rows.size(), 4u);
+  const char* scenes[] = {"thesis:sphere@200:1", "thesis:sphere@200:1", "thesis:sphere@800:1", "thesis:sphere@800:1"};
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(t.rows[i][t.column("scene")], scenes[i]);
+    const double want = i < 2 ? 200 : 800;
+    EXPECT_NEAR(std::stod(t.rows[i][t.column("triangles")]), want, kResizeTolerance * want);
+    EXPECT_EQ(t.rows[i][t.column("mesh")], i < 2 ? "sphere@200" : "sphere@800");
+  }
+  EXPECT_EQ(t.rows[1][t.column("agreement")], "ok");
+  for (const char* bad : {"50", "3000000", "abc", "1000,x"}) {
+    const test::CommandResult e = test::run_sdfbench("table --meshes sphere --objects 1 --triangles '" + std::string(bad) + "'");
+    EXPECT_EQ(e.exit_code, 1) << bad << ": " << e.output;
+    EXPECT_NE(e.output.find("sdfbench: error: --triangles"), std::string::npos) << bad << ": " << e.output;
+  }
+}
+
+}  // namespace
+}  // namespace sdfbench
