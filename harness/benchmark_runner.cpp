@@ -47,7 +47,10 @@ Measurement configuration_fields(const BenchConfig& config, size_t run_index, co
     m.octree_min_size = p.octree_min_size;
     m.lists = p.lists == sdf::ListRule::Exact ? "exact" : "thesis";
     m.mesh_cell = config.options.mesh_grid.cell_size;
-    if (config.options.mesh_grid.cell_size <= 0) m.cells_per_extent = config.options.mesh_grid.cells_per_extent;
+    if (config.options.mesh_grid.cell_size <= 0) {
+      m.cells_per_extent = config.options.mesh_grid.cells_per_extent;
+      m.fixed_grid = config.options.mesh_grid.scale_with_triangles ? 0.0 : 1.0;
+    }
     const sdf::SphereTraceParams& t = config.options.tracing;
     m.hit = t.hit == sdf::HitMode::exact ? "exact" : "thesis";
     m.max_steps = t.max_steps;

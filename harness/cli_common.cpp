@@ -105,6 +105,10 @@ void add_structure_options(CLI::App& command, BackendOptions& options) {
       ->capture_default_str()->check(number_in(0.0, 1e30))->group(group);
   command.add_option("--cells-per-extent", options.mesh_grid.cells_per_extent, "mesh grid cells along the mesh's largest extent")
       ->capture_default_str()->check(CLI::Range(1u, 1024u))->group(group);
+  command.add_flag("--fixed-grid", [&options](int64_t) { options.mesh_grid.scale_with_triangles = false; },
+                   "keep --cells-per-extent for meshes over 8192 triangles too (default: finer with the triangle count, "
+                   "far cells as bounds; README, \"Large meshes\")")
+      ->group(group);
   command.add_option("--hash-cell", options.scene_hash.hash_cell,
                      "scene hash cell size (thesis: 10 with octree, 1 without; sdf-hash defaults to 1)")
       ->capture_default_str()->check(number_in(1e-30, 1e30))->group(group)

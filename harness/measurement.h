@@ -22,6 +22,7 @@ struct Measurement {
   // SDF backends only (empty for the others): structure and sphere-tracing parameters
   std::optional<double> hash_cell, octree_depth, octree_min_objects, octree_min_size, mesh_cell;
   std::optional<double> cells_per_extent;  // when mesh_cell is 0 (derived from it)
+  std::optional<double> fixed_grid;        // when mesh_cell is 0: 1 = --fixed-grid (no scaling with the triangle count)
   std::string lists;                        // "exact" or "thesis" (--lists)
   std::string hit;                          // "exact" or "thesis" (--hit)
   std::optional<double> max_steps, hit_epsilon, hit_footprint, over_relax, cell_bound;

@@ -226,25 +226,49 @@ TEST(MeshDistanceGrid, ExactOnTheThesisMeshesCoarseAndFine) {
   }
 }
 
-// A 50k-triangle mesh (the mesh-size axis' generator, cached in a temporary folder): the grid
-// at the default resolution is exact, max |grid - brute force| = 0 on sampled points inside.
-TEST(MeshDistanceGrid, ExactOnA50kTriangleMesh) {
+// A 50k-triangle mesh (the mesh-size axis' generator, cached in a temporary folder): its grid is
+// scaled (mesh_distance_grid.h), exact in every listed cell (max |grid - brute force| = 0 on
+// sampled points), a positive lower bound in far cells, with the sign of ray parity there; with
+// --fixed-grid the plain grid, exact everywhere in the box.
+TEST(MeshDistanceGrid, ScaledGridOnA50kTriangleMeshIsExactWhereItLists) {
   const test::TempDir dir;
   ::setenv("SDFBENCH_MESH_CACHE", dir.path().c_str(), 1);
   const Mesh mesh = load_sized_mesh("bunny", 50000);
   ASSERT_NEAR(static_cast<double>(mesh.triangle_count()), 50000.0, 500.0);
-  const MeshDistanceGrid grid = build_mesh_distance_grid(mesh, MeshGridParams{});
-  Pcg32 rng(50000);
-  const glm::vec3 lo = grid.origin, hi = grid.box_max();
-  float max_error = 0.0f;
-  for (int i = 0; i < 600; ++i) {
-    // Half near the surface, half anywhere in the grid box.
-    const float u = rng.uniform();
-    glm::vec3 p = i % 2 ? random_in_box(lo, hi, rng) : random_surface_point(mesh, rng) + random_direction(rng) * (2.0f * grid.cell_size * u * u);
-    p = glm::clamp(p, lo, hi);
-    max_error = std::max(max_error, std::abs(grid_distance(grid, mesh, p) - brute_force_distance(mesh, p)));
+  const bool closed = open_edge_count(mesh) == 0;
+  MeshGridParams fixed;
+  fixed.scale_with_triangles = false;
+  for (const MeshGridParams& params : {MeshGridParams{}, fixed}) {
+    const MeshDistanceGrid grid = build_mesh_distance_grid(mesh, params);
+    const bool scaled = params.scale_with_triangles;
+    SCOPED_TRACE(scaled ? "scaled" : "fixed");
+    EXPECT_EQ(std::max({grid.dims.x, grid.dims.y, grid.dims.z}) - 2, scaled ? 79u : 32u);  // 32 sqrt(50000 / 8192), + margins
+    EXPECT_EQ(grid.far_distance.empty(), !scaled);
+    Pcg32 rng(50000);
+    const glm::vec3 lo = grid.origin, hi = grid.box_max();
+    float max_error = 0.0f;
+    int far = 0, far_bad = 0, sign_bad = 0;
+    for (int i = 0; i < 600; ++i) {
+      // Half near the surface, half anywhere in the grid box.
+      const float u = rng.uniform();
+      glm::vec3 p = i % 2 ? random_in_box(lo, hi, rng) : random_surface_point(mesh, rng) + random_direction(rng) * (2.0f * grid.cell_size * u * u);
+      p = glm::clamp(p, lo, hi);
+      const float g = grid_distance(grid, mesh, p), b = brute_force_distance(mesh, p);
+      if (in_far_cell(grid, p)) {
+        ++far;
+        far_bad += !(g > 0.0f && g <= b && grid_upper_distance(grid, mesh, p) >= b);
+        sign_bad += closed && (grid_signed_distance(grid, mesh, p) < 0.0f) != ray_parity_inside(mesh, p);
+      } else {
+        max_error = std::max(max_error, std::abs(g - b));
+      }
+    }
+    EXPECT_EQ(max_error, 0.0f);
+    EXPECT_EQ(far_bad, 0) << far << " far samples";
+    EXPECT_EQ(sign_bad, 0) << far << " far samples";
+    if (scaled) {
+      EXPECT_GT(far, 100);
+    }
   }
-  EXPECT_EQ(max_error, 0.0f);
 }
 
 TEST(MeshDistanceGrid, ExactWithTheSphereRuleAndDeeperSubdivision) {

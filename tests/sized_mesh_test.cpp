@@ -154,5 +154,25 @@ TEST_F(SizedMesh, TableTrianglesIsTheMeshSizeAxis) {
   }
 }
 
+// Scaled grids in every SDF backend: a mesh over 8192 triangles agrees with Embree (the Vulkan
+// kernels read far cells from the grid_cells texels), and the cache refuses scaled grids.
+TEST_F(SizedMesh, ScaledGridsRenderLikeEmbreeInEverySdfBackend) {
+  for (const char* mode : {"primary", "shadow"}) {
+    const test::CommandResult r = test::run_sdfbench(
+        std::string("compare --scene thesis:bunny@20000:3 --backends embree,sdf-cpu,sdf-hash,sdf-octree --size 96x54 --mode ") + mode);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+  }
+  // The far-cell branch of the kernels under the validation layer.
+  const test::CommandResult validated =
+      test::run_sdfbench("render --scene thesis:bunny@20000:3 --backend sdf-octree --mode shadow --size 64x36 --validate --out " +
+                         (dir_.path() / "v.png").string());
+  EXPECT_EQ(validated.exit_code, 0) << validated.output;
+  const test::CommandResult cached =
+      test::run_sdfbench("build --scene thesis:bunny@20000:1 --cache " + (dir_.path() / "c.sdfcache").string());
+  EXPECT_EQ(cached.exit_code, 1) << cached.output;
+  EXPECT_NE(cached.output.find("are not cached yet"), std::string::npos) << cached.output;
+  EXPECT_EQ(test::run_sdfbench("build --scene thesis:bunny@20000:1 --fixed-grid --cache " + (dir_.path() / "f.sdfcache").string()).exit_code, 0);
+}
+
 }  // namespace
 }  // namespace sdfbench

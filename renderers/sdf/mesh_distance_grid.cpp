@@ -370,11 +370,128 @@ bool in_box(const MeshDistanceGrid& grid, const glm::vec3& p, glm::vec3& hi) {
          p.z <= hi.z;
 }
 
+// Whether p is inside, by the pseudo-normal of the feature of triangle t (p's closest) nearest p.
+bool inside_by_pseudo_normal(const MeshDistanceGrid& grid, const Mesh& mesh, uint32_t t, const glm::vec3& p) {
+  const TriangleClosest c = closest_on_mesh_triangle(mesh, t, p);
+  glm::vec3 n;
+  if (c.feature == kFeatureFace)
+    n = grid.face_normals[t];
+  else if (c.feature <= kFeatureEdge20)
+    n = grid.edge_normals[3 * t + (c.feature - kFeatureEdge01)];
+  else
+    n = grid.vertex_normals[mesh.triangles[t][c.feature - kFeatureVertex0]];
+  return glm::dot(p - c.point, n) < 0.0f;
+}
+
+// Far cells without a nearest-triangle query each (13 M of them at 1 M triangles): mark the
+// cells that triangles' bounding boxes touch (every point of the mesh lies in one), then count
+// for every cell the Chebyshev steps to the nearest marked cell (26-neighbour breadth-first).
+// A cell k steps away has its centre at least (k - 0.5) cells from every marked cell along some
+// axis, so dist(centre, mesh) >= (k - 0.5) s; from k = kFarSteps on, every point of the cell is
+// at least (k - 0.5) s - h >= 0.63 s from the mesh: a far cell. Which side: a flood through unmarked cells (6-neighbour) from the grid box's faces
+// reaches the outside; far cells it does not reach are enclosed by the mesh.
+constexpr uint16_t kFarSteps = 2;
+
+struct FarField {
+  std::vector<uint16_t> steps;   // per cell; 0 = marked
+  std::vector<uint8_t> outside;  // per cell: reached from the grid box's faces
+  std::vector<uint32_t> source;  // per cell: a triangle of the marked cell it was reached from (an upper bound's witness)
+};
+
+FarField far_field(const MeshDistanceGrid& grid, const Mesh& mesh) {
+  const glm::ivec3 dims(grid.dims);
+  auto index = [&](const glm::ivec3& c) { return static_cast<size_t>(c.x) + static_cast<size_t>(dims.x) * (c.y + static_cast<size_t>(dims.y) * c.z); };
+  const size_t n = grid.cell_count();
+  FarField f;
+  f.steps.assign(n, UINT16_MAX);
+  f.source.assign(n, 0);
+  std::vector<size_t> queue;
+  for (uint32_t ti = 0; ti < mesh.triangles.size(); ++ti) {
+    const glm::uvec3& t = mesh.triangles[ti];
+    const glm::vec3 lo = glm::min(glm::min(mesh.positions[t.x], mesh.positions[t.y]), mesh.positions[t.z]);
+    const glm::vec3 hi = glm::max(glm::max(mesh.positions[t.x], mesh.positions[t.y]), mesh.positions[t.z]);
+    // A little slack each way: rounding at a cell face must not leave a touched cell unmarked.
+    const float slack = 1e-3f;
+    const glm::ivec3 a = glm::clamp(glm::ivec3(glm::floor((lo - grid.origin) / grid.cell_size - slack)), glm::ivec3(0), dims - 1);
+    const glm::ivec3 b = glm::clamp(glm::ivec3(glm::floor((hi - grid.origin) / grid.cell_size + slack)), glm::ivec3(0), dims - 1);
+    for (int z = a.z; z <= b.z; ++z)
+      for (int y = a.y; y <= b.y; ++y)
+        for (int x = a.x; x <= b.x; ++x)
+          if (uint16_t& v = f.steps[index({x, y, z})]; v != 0) {
+            v = 0;
+            f.source[index({x, y, z})] = ti;
+            queue.push_back(index({x, y, z}));
+          }
+  }
+  auto coords = [&](size_t i) {
+    return glm::ivec3(static_cast<int>(i % dims.x), static_cast<int>((i / dims.x) % dims.y), static_cast<int>(i / (static_cast<size_t>(dims.x) * dims.y)));
+  };
+  for (size_t head = 0; head < queue.size(); ++head) {
+    const glm::ivec3 c = coords(queue[head]);
+    const uint16_t next = static_cast<uint16_t>(std::min<int>(f.steps[queue[head]] + 1, UINT16_MAX - 1));
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const glm::ivec3 m = c + glm::ivec3(dx, dy, dz);
+          if (glm::any(glm::lessThan(m, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(m, dims))) continue;
+          if (uint16_t& v = f.steps[index(m)]; v == UINT16_MAX) {
+            v = next;
+            f.source[index(m)] = f.source[queue[head]];
+            queue.push_back(index(m));
+          }
+        }
+  }
+  f.outside.assign(n, 0);
+  queue.clear();
+  for (size_t i = 0; i < n; ++i) {
+    const glm::ivec3 c = coords(i);
+    const bool face = c.x == 0 || c.y == 0 || c.z == 0 || c.x == dims.x - 1 || c.y == dims.y - 1 || c.z == dims.z - 1;
+    if (face && f.steps[i] != 0) {
+      f.outside[i] = 1;
+      queue.push_back(i);
+    }
+  }
+  for (size_t head = 0; head < queue.size(); ++head) {
+    const glm::ivec3 c = coords(queue[head]);
+    for (int a = 0; a < 3; ++a)
+      for (int d : {-1, 1}) {
+        glm::ivec3 m = c;
+        m[a] += d;
+        if (m[a] < 0 || m[a] >= dims[a]) continue;
+        const size_t i = index(m);
+        if (!f.outside[i] && f.steps[i] != 0) {
+          f.outside[i] = 1;
+          queue.push_back(i);
+        }
+      }
+  }
+  return f;
+}
+
+// A far cell's bound at p (> 0), or 0 for a listed cell.
+float far_bound(const MeshDistanceGrid& grid, uint32_t cell, const glm::vec3& p) {
+  if (grid.far_distance.empty() || grid.far_distance[cell] == 0.0f) return 0.0f;
+  const glm::uvec3 c(cell % grid.dims.x, (cell / grid.dims.x) % grid.dims.y, cell / (grid.dims.x * grid.dims.y));
+  const float from_centre = glm::length(p - (grid.origin + (glm::vec3(c) + 0.5f) * grid.cell_size));
+  // >= bound - h >= 0.63 cells: never 0, never a hit.
+  return std::abs(grid.far_distance[cell]) - from_centre;
+}
+
 }  // namespace
 
 size_t MeshDistanceGrid::bytes() const {
-  return (cell_begin.size() + cell_triangles.size()) * sizeof(uint32_t) +
+  return (cell_begin.size() + cell_triangles.size()) * sizeof(uint32_t) + (far_distance.size() + far_upper.size()) * sizeof(float) +
          (face_normals.size() + edge_normals.size() + vertex_normals.size()) * sizeof(glm::vec3);
+}
+
+bool has_far_cells(const MeshGridParams& params, size_t triangles) {
+  return params.scale_with_triangles && params.cell_size == 0.0f && triangles > kScaledGridFromTriangles;
+}
+
+uint32_t effective_cells_per_extent(const MeshGridParams& params, size_t triangles) {
+  if (!has_far_cells(params, triangles)) return params.cells_per_extent;
+  const double scaled = params.cells_per_extent * std::sqrt(static_cast<double>(triangles) / kScaledGridFromTriangles);
+  return std::max(params.cells_per_extent, std::min(kMaxScaledCellsPerExtent, static_cast<uint32_t>(std::lround(scaled))));
 }
 
 MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams& params) {
@@ -394,8 +511,10 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
   const glm::vec3 extent = bounds.extent();
   const float largest = std::max({extent.x, extent.y, extent.z});
   MeshDistanceGrid grid;
+  const uint32_t cells_per_extent = effective_cells_per_extent(params, mesh.triangles.size());
+  const bool far_cells = has_far_cells(params, mesh.triangles.size());
   grid.cell_size = params.cell_size > 0.0f ? params.cell_size
-                                           : (largest > 0.0f ? largest / static_cast<float>(params.cells_per_extent) : 1.0f);
+                                           : (largest > 0.0f ? largest / static_cast<float>(cells_per_extent) : 1.0f);
   double cells = 1.0;
   for (int a = 0; a < 3; ++a) {
     const double n = std::ceil(static_cast<double>(extent[a]) / grid.cell_size + 2.0 * params.margin_cells - 1e-6);
@@ -423,8 +542,10 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
   const glm::vec3 far = glm::max(glm::abs(grid.origin), glm::abs(grid.box_max()));
   const float slack = 1e-4f * s + 64.0f * std::numeric_limits<float>::epsilon() * std::max({far.x, far.y, far.z, s});
 
+  const FarField field = far_cells ? far_field(grid, mesh) : FarField{};
   const uint32_t rows = grid.dims.y * grid.dims.z;
   std::vector<std::vector<uint32_t>> row_counts(rows), row_lists(rows);
+  std::vector<std::vector<float>> row_far(far_cells ? rows : 0), row_far_upper(far_cells ? rows : 0);
   // The lists' memory as they grow, against the cap (checked per row, before the next one).
   std::atomic<uint64_t> list_bytes{grid.cell_count() * sizeof(uint32_t)};
   ProgressMeter progress("mesh grid '" + mesh.name + "' (" + std::to_string(mesh.triangles.size()) + " triangles)", rows,
@@ -444,6 +565,21 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
       for (uint32_t x = 0; x < grid.dims.x; ++x) {
         q.lo = grid.origin + glm::vec3(x, y, z) * s;
         q.hi = q.lo + s;
+        if (far_cells) {
+          std::vector<float>& far = row_far[row];
+          std::vector<float>& far_up = row_far_upper[row];
+          far.resize(grid.dims.x, 0.0f);
+          far_up.resize(grid.dims.x, 0.0f);
+          const size_t cell = x + static_cast<size_t>(grid.dims.x) * row;
+          if (field.steps[cell] >= kFarSteps) {
+            const float bound = (static_cast<float>(field.steps[cell]) - 0.5f) * s - slack;
+            far[x] = field.outside[cell] ? bound : -bound;
+            // The distance to one real triangle nearby: an upper bound (the scene hash's lists need one).
+            far_up[x] = std::sqrt(closest_on_mesh_triangle(mesh, field.source[cell], q.lo + half).distance_squared) + slack;
+            counts[x] = 0;
+            continue;
+          }
+        }
         float dc = 0.0f;
         q.cell = make_reach_box(bvh, mesh, q.lo + half, half, &dc);
         q.upper = dc + h + slack;
@@ -473,9 +609,17 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
   grid.cell_begin.reserve(grid.cell_count() + 1);
   grid.cell_triangles.reserve(total);
   grid.cell_begin.push_back(0);
+  if (far_cells) {
+    grid.far_distance.reserve(grid.cell_count());
+    grid.far_upper.reserve(grid.cell_count());
+  }
   for (uint32_t row = 0; row < rows; ++row) {
     for (uint32_t c : row_counts[row]) grid.cell_begin.push_back(grid.cell_begin.back() + c);
     grid.cell_triangles.insert(grid.cell_triangles.end(), row_lists[row].begin(), row_lists[row].end());
+    if (far_cells) {
+      grid.far_distance.insert(grid.far_distance.end(), row_far[row].begin(), row_far[row].end());
+      grid.far_upper.insert(grid.far_upper.end(), row_far_upper[row].begin(), row_far_upper[row].end());
+    }
   }
   grid.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return grid;
@@ -493,6 +637,10 @@ float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::v
   const uint32_t cell = cell_of(grid, p);
   float best = kInf;
   uint32_t best_t = UINT32_MAX;
+  if (const float far = far_bound(grid, cell, p); far > 0.0f) {
+    if (closest_triangle) *closest_triangle = UINT32_MAX;
+    return far;
+  }
   for (uint32_t i = grid.cell_begin[cell]; i < grid.cell_begin[cell + 1]; ++i) {
     const uint32_t t = grid.cell_triangles[i];
     const float d2 = closest_on_mesh_triangle(mesh, t, p).distance_squared;
@@ -503,6 +651,20 @@ float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::v
   }
   if (closest_triangle) *closest_triangle = best_t;
   return std::sqrt(best);
+}
+
+float grid_upper_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p) {
+  if (in_far_cell(grid, p)) {
+    const uint32_t cell = cell_of(grid, p);
+    const glm::uvec3 c(cell % grid.dims.x, (cell / grid.dims.x) % grid.dims.y, cell / (grid.dims.x * grid.dims.y));
+    return grid.far_upper[cell] + glm::length(p - (grid.origin + (glm::vec3(c) + 0.5f) * grid.cell_size));
+  }
+  return grid_distance(grid, mesh, p);
+}
+
+bool in_far_cell(const MeshDistanceGrid& grid, const glm::vec3& p) {
+  glm::vec3 hi;
+  return !grid.far_distance.empty() && in_box(grid, p, hi) && grid.far_distance[cell_of(grid, p)] != 0.0f;
 }
 
 MeshTraceLists make_trace_lists(const MeshDistanceGrid& grid, const Mesh& mesh) {
@@ -538,6 +700,7 @@ float traced_grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const
   if (!in_box(grid, p, hi)) return std::sqrt(point_box_distance2(p, mesh.bounds.min, mesh.bounds.max));
   const glm::uvec3 c = cell_coords(grid, p);
   const uint32_t cell = c.x + grid.dims.x * (c.y + grid.dims.y * c.z);
+  if (const float far = far_bound(grid, cell, p); far > 0.0f) return far;
   const float from_centre = glm::length(p - (grid.origin + (glm::vec3(c) + 0.5f) * grid.cell_size));
   float best = kInf;
   for (uint32_t i = grid.cell_begin[cell]; i < grid.cell_begin[cell + 1]; ++i) {
@@ -556,16 +719,11 @@ float traced_grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const
 float grid_signed_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p) {
   uint32_t t = UINT32_MAX;
   const float d = grid_distance(grid, mesh, p, &t);
+  glm::vec3 hi;
+  if (t == UINT32_MAX && in_box(grid, p, hi) && !grid.far_distance.empty() && grid.far_distance[cell_of(grid, p)] < 0.0f)
+    return -d;  // a far cell inside the mesh
   if (t == UINT32_MAX) return d;
-  const TriangleClosest c = closest_on_mesh_triangle(mesh, t, p);
-  glm::vec3 n;
-  if (c.feature == kFeatureFace)
-    n = grid.face_normals[t];
-  else if (c.feature <= kFeatureEdge20)
-    n = grid.edge_normals[3 * t + (c.feature - kFeatureEdge01)];
-  else
-    n = grid.vertex_normals[mesh.triangles[t][c.feature - kFeatureVertex0]];
-  return glm::dot(p - c.point, n) < 0.0f ? -d : d;
+  return inside_by_pseudo_normal(grid, mesh, t, p) ? -d : d;
 }
 
 float brute_force_distance(const Mesh& mesh, const glm::vec3& p, uint32_t* closest_triangle) {

@@ -38,6 +38,17 @@ enum class MeshGridRule {
 // --max-structure-mb. The Vulkan backends' 31-bit words and the 4 GiB cache sit beyond it.
 inline constexpr uint64_t kDefaultMaxStructureBytes = uint64_t(2048) << 20;
 
+// Large meshes (the mesh-size axis): a fixed resolution would put ever more triangles in every
+// cell, so beyond kScaledGridFromTriangles the cells per extent grow as sqrt(triangles) (a
+// surface's cells grow as the square of the resolution, so triangles per surface cell stay
+// about what they are at the threshold), up to kMaxScaledCellsPerExtent; and cells two or more
+// cells (Chebyshev) from every cell a triangle's bounding box touches hold a lower bound
+// instead of a list (far cells: their lists would be the longest, no query there needs the
+// exact distance to step safely, and the bound needs no nearest-triangle search per cell).
+// The thesis meshes (768-4968 triangles) are below the threshold: unchanged.
+inline constexpr size_t kScaledGridFromTriangles = 8192;
+inline constexpr uint32_t kMaxScaledCellsPerExtent = 256;
+
 struct MeshGridParams {
   float cell_size = 0.0f;          // > 0: explicit cell size (mesh units); 0: derived from cells_per_extent
   uint32_t cells_per_extent = 32;  // cells along the mesh's largest bounding-box extent
@@ -47,6 +58,7 @@ struct MeshGridParams {
   // --max-structure-mb: the build stops with an Error once the cell lists pass this. Not a
   // parameter of the result (caches and result keys leave it out).
   uint64_t max_bytes = kDefaultMaxStructureBytes;
+  bool scale_with_triangles = true;  // the rule above (--fixed-grid: off); only with cells_per_extent
 };
 
 // DESIGN.md's exact grid: each cell lists every triangle that can be the closest one to some point of the cell.
@@ -60,6 +72,10 @@ struct MeshDistanceGrid {
   // triangle, edge k of triangle t at 3t + k) and per vertex (indexed like mesh.positions).
   // Vertices at identical positions are welded first, so split seams do not break the sign.
   std::vector<glm::vec3> face_normals, edge_normals, vertex_normals;
+  // Scaled grids only (else empty): per cell 0 for a listed cell, else a far cell's bound: its
+  // centre's distance to the mesh (rounded down), negative inside. A far cell's list is empty.
+  std::vector<float> far_distance;
+  std::vector<float> far_upper;  // per cell: an upper bound on a far cell's centre distance (CPU only: the scene hash's lists)
   double build_ms = 0;
 
   size_t bytes() const;  // payload: the CSR arrays and the pseudo-normals
@@ -67,14 +83,27 @@ struct MeshDistanceGrid {
   glm::vec3 box_max() const { return origin + glm::vec3(dims) * cell_size; }
 };
 
+// The cells per extent a build uses for `triangles` (the rule above; the requested value when
+// it does not apply), and whether it makes far cells.
+uint32_t effective_cells_per_extent(const MeshGridParams& params, size_t triangles);
+bool has_far_cells(const MeshGridParams& params, size_t triangles);
+
 // Throws Error for unusable parameters (non-positive or non-finite cell size, zero cells per
 // extent, negative margin, subdivision outside 1..8), a grid over 2^26 cells, or lists passing
 // params.max_bytes (checked as they grow). Prints progress on stderr when the build is long.
 MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams& params);
 
-// Unsigned distance: inside the grid box the min over the cell's listed triangles (exact);
-// outside, the distance to the mesh bounds (a safe lower bound, >= the distance to the grid box). closest_triangle set when inside (else UINT32_MAX).
+// Unsigned distance: inside the grid box the min over the cell's listed triangles (exact); in a
+// far cell its bound less the distance from its centre (a lower bound, >= 0.63 cells);
+// outside, the distance to the mesh bounds (a safe lower bound, >= the distance to the grid
+// box). closest_triangle set in listed cells (else UINT32_MAX).
 float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p, uint32_t* closest_triangle = nullptr);
+
+// Whether p is in a far cell of a scaled grid (there grid_distance is a bound, not exact).
+bool in_far_cell(const MeshDistanceGrid& grid, const glm::vec3& p);
+// An upper bound on the distance at p inside the grid box: grid_distance (exact) in listed
+// cells, a far cell's upper bound plus the way from its centre in far cells.
+float grid_upper_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p);
 
 // A grid's lists as the sphere tracers walk them (sdf-cpu and the Vulkan kernels alike): each cell's
 // triangles nearest to the cell centre first, so that a query finds a close triangle early and

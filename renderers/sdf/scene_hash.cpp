@@ -43,14 +43,14 @@ class InstanceBounds {
     return grid_distance(grids_[instance.mesh], scene_.meshes[instance.mesh], local) * instance.transform.scale;
   }
   // Upper bound: outside the grid box, |p - q| + d(q) with q the nearest point of the box
-  // (triangle inequality; d(q) is exact since q is inside).
+  // (triangle inequality; d(q) is exact since q is inside, or an upper bound in a far cell).
   float upper(uint32_t i, const glm::vec3& p) const {
     const Instance& instance = scene_.instances[i];
     const MeshDistanceGrid& grid = grids_[instance.mesh];
     const glm::vec3 local(world_to_object_[i] * glm::vec4(p, 1.0f));
     const glm::vec3 hi = grid.origin + glm::vec3(grid.dims) * grid.cell_size;
     const glm::vec3 q = glm::clamp(local, grid.origin, hi);
-    const float d = glm::length(local - q) + grid_distance(grid, scene_.meshes[instance.mesh], q);
+    const float d = glm::length(local - q) + grid_upper_distance(grid, scene_.meshes[instance.mesh], q);
     return d * instance.transform.scale;
   }
   const Aabb& world_box(uint32_t i) const { return world_box_[i]; }

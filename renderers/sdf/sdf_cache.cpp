@@ -75,7 +75,21 @@ uint64_t scene_geometry_hash(const Scene& scene) {
   return h;
 }
 
+namespace {
+
+// Format 1 has no section for far cells (mesh_distance_grid.h): scaled grids are not cached yet.
+void check_cacheable(const fs::path& path, const Scene& scene, const MeshGridParams& mesh_params) {
+  for (const Mesh& mesh : scene.meshes)
+    if (has_far_cells(mesh_params, mesh.triangles.size()))
+      throw Error("SDF cache '" + path.string() + "': mesh '" + mesh.name + "' has " + std::to_string(mesh.triangles.size()) +
+                  " triangles, and grids scaled for meshes over " + std::to_string(kScaledGridFromTriangles) +
+                  " triangles are not cached yet; drop --cache (or pass --fixed-grid)");
+}
+
+}  // namespace
+
 void write_sdf_cache(const fs::path& path, const Scene& scene, const SceneSdf& sdf, const MeshGridParams& mesh_params) {
+  check_cacheable(path, scene, mesh_params);
   SdfCacheContents c;
   c.scene_hash = scene_geometry_hash(scene);
   c.instance_count = static_cast<uint32_t>(scene.instances.size());
@@ -99,6 +113,7 @@ namespace {
 // The cache already read (and bounded), checked completely and against this scene.
 SceneSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, const Scene& scene,
                         const MeshGridParams& mesh_params, const SceneHashParams& hash_params) {
+  check_cacheable(path, scene, mesh_params);
   SdfCacheContents c = decode_sdf_cache(bytes, path.string());
   const std::string stale = "SDF cache '" + path.string() + "' is stale: ";
   if (c.scene_hash != scene_geometry_hash(scene))

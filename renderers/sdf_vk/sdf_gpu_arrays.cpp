@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
@@ -115,8 +116,14 @@ SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const
     out.mesh_records.push_back(glm::uvec4(grid.dims, first_cell));
     out.mesh_records.push_back(bits(mesh.bounds.min, first_triangle));
     out.mesh_records.push_back(bits(mesh.bounds.max, 0u));
-    for (size_t c = 0; c < grid.cell_count(); ++c)
-      out.grid_cells.emplace_back(list_base + grid.cell_begin[c], list_base + grid.cell_begin[c + 1]);
+    for (size_t c = 0; c < grid.cell_count(); ++c) {
+      if (!grid.far_distance.empty() && grid.far_distance[c] != 0.0f) {
+        const uint32_t far = std::bit_cast<uint32_t>(std::abs(grid.far_distance[c])) | SDF_FAR_CELL;
+        out.grid_cells.emplace_back(far, far);
+      } else {
+        out.grid_cells.emplace_back(list_base + grid.cell_begin[c], list_base + grid.cell_begin[c + 1]);
+      }
+    }
     const sdf::MeshTraceLists& lists = culling.meshes[m];
     for (size_t i = 0; i < lists.triangles.size(); ++i) {
       const glm::uvec3& t = mesh.triangles[lists.triangles[i]];

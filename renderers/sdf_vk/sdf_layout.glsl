@@ -39,6 +39,10 @@ struct SdfParams {
 // triangles concatenated) index the vertex and normal tables (3 RGBA32F texels per triangle).
 #define SDF_MESH_TEXELS 4
 #define SDF_ENTRY_TEXELS 3
+// A far cell of a scaled grid (mesh_distance_grid.h) is (v, v) with v = its bound's float bits
+// | SDF_FAR_CELL: an empty range for every list walk (begin = end, negative as int), and the
+// bound for the distance. List entries stay below 2^31 (texel buffers hold 2^27 texels).
+#define SDF_FAR_CELL 0x80000000u
 
 #define SDF_NONE 0xffffffffu
 

@@ -69,7 +69,8 @@ vec3 entry_vertex(int entry, int k) {
 }
 
 // grid_distance() in renderers/sdf/mesh_distance_grid.cpp, object space: inside the grid box the
-// min over the cell's listed triangles (exact); outside, the distance to the mesh bounds.
+// min over the cell's listed triangles (exact), or a far cell's bound; outside, the distance to
+// the mesh bounds.
 float mesh_distance(uint mesh, vec3 p, out uint triangle) {
   int base = int(mesh) * SDF_MESH_TEXELS;
   uvec4 r0 = texelFetch(mesh_records, base);
@@ -93,6 +94,8 @@ float mesh_distance(uint mesh, vec3 p, out uint triangle) {
   uvec2 range = texelFetch(grid_cells, cell).xy;
   for (int r = 1; r < SDF_REPEAT_INSTANCE; ++r) range = min(range, texelFetch(grid_cells, cell + r * SDF_ZERO).xy);
   float from_centre = length(p - (origin + (vec3(c) + 0.5f) * cell_size));
+  // A far cell: its bound less the way from its centre (>= 0.63 cells; no triangle).
+  if ((range.x & SDF_FAR_CELL) != 0u) return uintBitsToFloat(range.x & ~SDF_FAR_CELL) - from_centre;
   float best = SDF_FAR;
   for (int i = int(range.x); i < int(range.y); ++i) {
     vec4 first = texelFetch(grid_entries, SDF_ENTRY_TEXELS * i);
