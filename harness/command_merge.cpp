@@ -17,6 +17,7 @@ namespace {
 struct MergeArgs {
   std::vector<std::string> inputs;
   std::string csv, markdown;
+  bool several_runs = false;  // --several-runs: files of different runs, one after the other
 };
 
 // The rows of one run only: a shard file left from an earlier run with other settings (same
@@ -37,7 +38,10 @@ void run_merge(const MergeArgs& args) {
   if (!args.markdown.empty()) check_output_path(args.markdown, "--markdown");
   const OutputLock lock(args.csv, "--csv");  // not while a table or sweep is writing it
   CsvTable merged, first;
-  std::vector<std::pair<size_t, std::vector<std::string>>> rows;  // run_index, fields
+  std::vector<std::pair<size_t, std::vector<std::string>>> rows;  // run_index (+ file rank), fields
+  // --several-runs orders by file, then run_index: each file's indices sit in a span of their own.
+  constexpr size_t kRunIndexSpan = size_t(1) << 40;
+  size_t file_rank = 0;
   std::map<std::string, std::string> seen;                         // configuration key -> file
   for (const std::string& path : args.inputs) {
     CsvTable t = read_csv(path);
@@ -45,7 +49,7 @@ void run_merge(const MergeArgs& args) {
     if (t.columns != merged.columns)
       throw Error("'" + path + "' has other columns than '" + args.inputs.front() + "': cannot merge them");
     if (first.rows.empty()) first = t;
-    check_same_run(t, first);
+    if (!args.several_runs) check_same_run(t, first);
     const size_t scene = t.column("scene"), backend = t.column("backend"), mode = t.column("mode");
     for (size_t r = 0; r < t.rows.size(); ++r) {
       const size_t index = row_run_index(t, r, path);
@@ -54,13 +58,14 @@ void run_merge(const MergeArgs& args) {
         throw Error("'" + path + "' and '" + it->second + "' both measure " + t.rows[r][scene] + " " + t.rows[r][backend] +
                     " " + t.rows[r][mode] + " (overlapping shards?)");
       seen[key] = path;
-      rows.emplace_back(index, std::move(t.rows[r]));
+      rows.emplace_back(args.several_runs ? file_rank + index : index, std::move(t.rows[r]));
     }
+    file_rank += kRunIndexSpan;
   }
-  // Back in the order of the unsharded run.
+  // Back in the order of the unsharded run (of each run in turn, with --several-runs).
   std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   size_t missing = 0, first_missing = 0;  // below the largest index: a shard not (yet) finished
-  for (size_t i = 1; i < rows.size(); ++i) {
+  for (size_t i = 1; i < rows.size() && !args.several_runs; ++i) {
     const size_t before = rows[i - 1].first, index = rows[i].first;
     if (index == before)
       throw Error("run_index " + std::to_string(index) + " is in the inputs twice, with other configurations: they are not the shards of one run");
@@ -86,6 +91,8 @@ void register_merge_command(CLI::App& app) {
   cmd->add_option("inputs", args->inputs, "CSV files written by table or sweep")->required();
   cmd->add_option("--csv", args->csv, "merged CSV")->required();
   cmd->add_option("--markdown", args->markdown, "also write the markdown tables of the merged rows");
+  cmd->add_flag("--several-runs", args->several_runs,
+                "join CSVs of different runs (e.g. a primary and a shadow table), one after the other; still refuses a configuration twice");
   cmd->callback([args] { run_merge(*args); });
 }
 

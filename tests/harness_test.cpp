@@ -206,6 +206,14 @@ TEST(SweepCommand, ShardsMergeToTheUnshardedRows) {
   for (const std::string& words : {"'" + other.string() + "' is not from the run of '" + s1.string() + "'",
                                    std::string("budget_s '300' in '") + s1.string() + "', '100' in '" + other.string() + "'"})
     EXPECT_NE(bad.output.find(words), std::string::npos) << words << "\n" << bad.output;
+  // ... unless asked to join several runs: then the files' rows one after the other.
+  const test::CommandResult several =
+      test::run_sdfbench("merge --several-runs " + other.string() + " " + s1.string() + " --csv " + merged.string());
+  ASSERT_EQ(several.exit_code, 0) << several.output;
+  const CsvTable both = read_csv(merged);
+  ASSERT_EQ(both.rows.size(), c.rows.size() + a.rows.size());
+  EXPECT_EQ(both.rows.front()[both.column("run_id")], c.rows[0][c.column("run_id")]);
+  EXPECT_EQ(both.rows.back()[both.column("run_id")], a.rows[0][a.column("run_id")]);
   const auto foreign = dir.write("foreign.csv", "a,b\n1,2\n");
   bad = test::run_sdfbench("merge " + s1.string() + " " + foreign.string() + " --csv " + merged.string());
   EXPECT_EQ(bad.exit_code, 1) << bad.output;

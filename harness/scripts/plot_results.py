@@ -8,6 +8,10 @@ Writes, for whatever the CSVs contain:
   thesis_vs_measured.png      each thesis table: our FPS and the thesis' FPS vs object count, per mesh
   sweep_<metric>.png          sweep heat maps: hash cell x octree depth -> FPS, steps/ray and
                               instance evaluations/ray
+  cost_vs_triangles_<mode>_<n>objects.png
+                              the mesh-size axis (meshes "<mesh>@<triangles>", table --triangles):
+                              ms per frame, build ms, structure bytes and triangle work per ray vs
+                              the real triangle count (log-log), one line per backend
 Rows flagged as disagreeing with the reference are drawn hollow; budget-cut rows get a dagger.
 """
 import argparse
@@ -62,11 +66,11 @@ def save(fig, path):
     print("wrote", path)
 
 
-def plot_series(ax, points, label, marker="o"):
+def plot_series(ax, points, label, marker="o", color=None):
     points = sorted(points)
     xs = [p[0] for p in points]
     ys = [p[1] for p in points]
-    line, = ax.plot(xs, ys, marker=marker, label=label)
+    line, = ax.plot(xs, ys, marker=marker, label=label, color=color)
     for x, y, row in points:
         if row is not None and row["agreement"].startswith("DISAGREE"):
             ax.plot([x], [y], marker=marker, markersize=11, markerfacecolor="none", color=line.get_color())
@@ -75,7 +79,7 @@ def plot_series(ax, points, label, marker="o"):
 
 
 def fps_vs_objects(rows, out_dir):
-    table_rows = [r for r in rows if r["table"] != "sweep" and usable(r)]
+    table_rows = [r for r in rows if r["table"] != "sweep" and usable(r) and "@" not in r["mesh"]]
     for mode in sorted({r["mode"] for r in table_rows}):
         mode_rows = [r for r in table_rows if r["mode"] == mode]
         meshes = list(dict.fromkeys(r["mesh"] for r in mode_rows))
@@ -125,6 +129,42 @@ def thesis_vs_measured(rows, out_dir):
     save(fig, os.path.join(out_dir, "thesis_vs_measured.png"))
 
 
+def cost_vs_triangles(rows, out_dir):
+    sized = [r for r in rows if r["table"] != "sweep" and usable(r) and "@" in r["mesh"]]
+    panels = (("ms_median", "ms per frame"), ("build_ms", "structure build (ms)"), ("structure_bytes", "structure bytes"),
+              ("triangle_work", "triangle distances + tests per ray"))
+    palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    colors = {b: palette[i % len(palette)] for i, b in enumerate(dict.fromkeys(r["backend"] for r in sized))}  # one per backend
+    for mode in sorted({r["mode"] for r in sized}):
+        for objects in sorted({int(r["objects"]) for r in sized if r["mode"] == mode}):
+            group = [r for r in sized if r["mode"] == mode and int(r["objects"]) == objects]
+            fig, axes = plt.subplots(1, len(panels), figsize=(4.2 * len(panels), 3.6), squeeze=False)
+            for ax, (metric, title) in zip(axes[0], panels):
+                series = defaultdict(list)
+                for r in group:
+                    if metric == "triangle_work":
+                        parts = [number(r["triangle_evals_per_ray"]), number(r["triangle_tests_per_ray"])]
+                        value = sum(p for p in parts if p is not None) if any(p is not None for p in parts) else None
+                    else:
+                        value = number(r[metric])
+                    if value is not None and value > 0:
+                        series[r["backend"]].append((int(r["triangles"]), value, r))  # the mesh's count (once, not per instance)
+                for backend, points in series.items():
+                    plot_series(ax, points, backend, color=colors[backend])
+                ax.set_xscale("log")
+                ax.set_yscale("log")
+                ax.set_title(title, fontsize=9)
+                ax.set_xlabel("triangles per mesh")
+                ax.grid(True, which="both", alpha=0.3)
+                if series:
+                    ax.legend(fontsize=7)
+            sizes = sorted({f'{r["width"]}x{r["height"]}' for r in group})
+            meshes = sorted({r["mesh"].split("@")[0] for r in group})
+            fig.suptitle(f"cost vs triangles: {', '.join(meshes)}, {objects} object(s), {mode}, {', '.join(sizes)} "
+                         f"(device: {group[0]['device']})", fontsize=10)
+            save(fig, os.path.join(out_dir, f"cost_vs_triangles_{mode}_{objects}objects.png"))
+
+
 def sweep_heatmaps(rows, out_dir):
     sweep = [r for r in rows if r["table"] == "sweep" and usable(r)]
     if not sweep:
@@ -171,6 +211,7 @@ def main():
     fps_vs_objects(rows, args.out_dir)
     thesis_vs_measured(rows, args.out_dir)
     sweep_heatmaps(rows, args.out_dir)
+    cost_vs_triangles(rows, args.out_dir)
 
 
 if __name__ == "__main__":
