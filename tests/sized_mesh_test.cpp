@@ -162,6 +162,12 @@ TEST_F(SizedMesh, ScaledGridsRenderLikeEmbreeInEverySdfBackend) {
         std::string("compare --scene thesis:bunny@20000:3 --backends embree,sdf-cpu,sdf-hash,sdf-octree --size 96x54 --mode ") + mode);
     EXPECT_EQ(r.exit_code, 0) << r.output;
   }
+  // Hit epsilons of many cells (48x27: ~9 cells): a far cell's bound below the epsilon is stepped
+  // as it is, not by an epsilon that would cross a neighbour's surface (before the fix: 85 % of
+  // ids on bunny@1000000:10).
+  const test::CommandResult coarse = test::run_sdfbench(
+      "compare --scene thesis:bunny@20000:10 --backends embree,sdf-cpu,sdf-octree --size 48x27 --mode primary --max-id-mismatches 0");
+  EXPECT_EQ(coarse.exit_code, 0) << coarse.output;
   // The far-cell branch of the kernels under the validation layer.
   const test::CommandResult validated =
       test::run_sdfbench("render --scene thesis:bunny@20000:3 --backend sdf-octree --mode shadow --size 64x36 --validate --out " +

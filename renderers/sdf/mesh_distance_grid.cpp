@@ -638,7 +638,7 @@ float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::v
   float best = kInf;
   uint32_t best_t = UINT32_MAX;
   if (const float far = far_bound(grid, cell, p); far > 0.0f) {
-    if (closest_triangle) *closest_triangle = UINT32_MAX;
+    if (closest_triangle) *closest_triangle = kFarCellTriangle;
     return far;
   }
   for (uint32_t i = grid.cell_begin[cell]; i < grid.cell_begin[cell + 1]; ++i) {
@@ -700,7 +700,10 @@ float traced_grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const
   if (!in_box(grid, p, hi)) return std::sqrt(point_box_distance2(p, mesh.bounds.min, mesh.bounds.max));
   const glm::uvec3 c = cell_coords(grid, p);
   const uint32_t cell = c.x + grid.dims.x * (c.y + grid.dims.y * c.z);
-  if (const float far = far_bound(grid, cell, p); far > 0.0f) return far;
+  if (const float far = far_bound(grid, cell, p); far > 0.0f) {
+    closest_triangle = kFarCellTriangle;
+    return far;
+  }
   const float from_centre = glm::length(p - (grid.origin + (glm::vec3(c) + 0.5f) * grid.cell_size));
   float best = kInf;
   for (uint32_t i = grid.cell_begin[cell]; i < grid.cell_begin[cell + 1]; ++i) {
@@ -719,9 +722,7 @@ float traced_grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const
 float grid_signed_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p) {
   uint32_t t = UINT32_MAX;
   const float d = grid_distance(grid, mesh, p, &t);
-  glm::vec3 hi;
-  if (t == UINT32_MAX && in_box(grid, p, hi) && !grid.far_distance.empty() && grid.far_distance[cell_of(grid, p)] < 0.0f)
-    return -d;  // a far cell inside the mesh
+  if (t == kFarCellTriangle) return grid.far_distance[cell_of(grid, p)] < 0.0f ? -d : d;  // the far cell's side
   if (t == UINT32_MAX) return d;
   return inside_by_pseudo_normal(grid, mesh, t, p) ? -d : d;
 }

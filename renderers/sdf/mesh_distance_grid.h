@@ -96,8 +96,13 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
 // Unsigned distance: inside the grid box the min over the cell's listed triangles (exact); in a
 // far cell its bound less the distance from its centre (a lower bound, >= 0.63 cells);
 // outside, the distance to the mesh bounds (a safe lower bound, >= the distance to the grid
-// box). closest_triangle set in listed cells (else UINT32_MAX).
+// box). closest_triangle set in listed cells (kFarCellTriangle in far cells, else UINT32_MAX).
 float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p, uint32_t* closest_triangle = nullptr);
+
+// The closest triangle grid_distance reports in a far cell: none, and the tracers step by the
+// bound itself (a bound below the hit epsilon is common there, and a step of at least an
+// epsilon could cross a surface the bound does not see; the bound, >= 0.63 cells, never stalls).
+inline constexpr uint32_t kFarCellTriangle = UINT32_MAX - 1;
 
 // Whether p is in a far cell of a scaled grid (there grid_distance is a bound, not exact).
 bool in_far_cell(const MeshDistanceGrid& grid, const glm::vec3& p);

@@ -80,15 +80,18 @@ SphereTracer::MarchEnd SphereTracer::march(const shading::Ray& ray, float t1, fl
       step_back();
       continue;
     }
-    // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
-    if (d.distance < epsilon && d.triangle != std::numeric_limits<uint32_t>::max()) {
+    // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box or
+    // from a far cell.
+    if (d.distance < epsilon && d.triangle < kFarCellTriangle) {
       ++steps;
       return MarchEnd::converged;
     }
     // At least epsilon: where the ray enters the box, rounding can leave the point a hair
     // outside it, and a bound of ~1e-7 would not move t at all (the ray then stalls to a miss).
-    const float plain = std::max(d.distance, epsilon);
-    step = omega > 1.0f ? std::max(omega * d.distance, epsilon) : plain;
+    // A far cell's bound is stepped as it is (kFarCellTriangle).
+    const float least = d.triangle == kFarCellTriangle ? 0.0f : epsilon;
+    const float plain = std::max(d.distance, least);
+    step = omega > 1.0f ? std::max(omega * d.distance, least) : plain;
     t_previous = t;
     plain_previous = plain;
     previous = d.distance;

@@ -45,6 +45,9 @@ struct SdfParams {
 #define SDF_FAR_CELL 0x80000000u
 
 #define SDF_NONE 0xffffffffu
+// The triangle of a far cell's bound (kFarCellTriangle): no triangle, stepped without the
+// epsilon floor.
+#define SDF_FAR_TRIANGLE 0xfffffffeu
 
 // --hit exact: the most mesh-grid cells one crossing search walks (a bound on the loop; a
 // segment of two hit epsilons crosses a few).

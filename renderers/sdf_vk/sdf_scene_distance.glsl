@@ -44,7 +44,7 @@ const float SDF_FAR = 3.0e38f;  // "no surface": one step by it leaves the hash 
 struct SceneDistance {
   float distance;
   uint instance;  // the nearest listed instance; SDF_NONE outside the hash box or in an empty leaf
-  uint triangle;  // global triangle index; SDF_NONE when the distance is only a bound
+  uint triangle;  // global triangle index; SDF_NONE when the distance is only a bound (SDF_FAR_TRIANGLE: a far cell's)
 };
 
 float box_distance(vec3 p, vec3 lo, vec3 hi) {
@@ -95,7 +95,10 @@ float mesh_distance(uint mesh, vec3 p, out uint triangle) {
   for (int r = 1; r < SDF_REPEAT_INSTANCE; ++r) range = min(range, texelFetch(grid_cells, cell + r * SDF_ZERO).xy);
   float from_centre = length(p - (origin + (vec3(c) + 0.5f) * cell_size));
   // A far cell: its bound less the way from its centre (>= 0.63 cells; no triangle).
-  if ((range.x & SDF_FAR_CELL) != 0u) return uintBitsToFloat(range.x & ~SDF_FAR_CELL) - from_centre;
+  if ((range.x & SDF_FAR_CELL) != 0u) {
+    triangle = SDF_FAR_TRIANGLE;
+    return uintBitsToFloat(range.x & ~SDF_FAR_CELL) - from_centre;
+  }
   float best = SDF_FAR;
   for (int i = int(range.x); i < int(range.y); ++i) {
     vec4 first = texelFetch(grid_entries, SDF_ENTRY_TEXELS * i);

@@ -107,15 +107,18 @@ uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistan
       step_back(t, omega, step, t_previous, plain_previous);
       continue;
     }
-    // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box.
-    if (d.distance < epsilon && d.triangle != SDF_NONE) {
+    // A hit needs an exact distance (a listed triangle), not a bound from outside a grid box or
+    // from a far cell.
+    if (d.distance < epsilon && d.triangle < SDF_FAR_TRIANGLE) {
       ++steps;
       return MARCH_CONVERGED;
     }
     // At least epsilon: where the ray enters the box, rounding can leave the point a hair
     // outside it, and a bound of ~1e-7 would not move t at all (the ray then stalls to a miss).
-    float plain = max(d.distance, epsilon);
-    step = omega > 1.0f ? max(omega * d.distance, epsilon) : plain;
+    // A far cell's bound is stepped as it is (SDF_FAR_TRIANGLE).
+    float least = d.triangle == SDF_FAR_TRIANGLE ? 0.0f : epsilon;
+    float plain = max(d.distance, least);
+    step = omega > 1.0f ? max(omega * d.distance, least) : plain;
     t_previous = t;
     plain_previous = plain;
     previous = d.distance;
