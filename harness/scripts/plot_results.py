@@ -105,6 +105,7 @@ def fps_vs_objects(rows, out_dir):
 
 def thesis_vs_measured(rows, out_dir):
     thesis = read_thesis()
+    rows = [r for r in rows if "@" not in r["mesh"]]  # resized meshes have no thesis values
     tables = [t for t in THESIS_CONFIG if any(r["table"] == t and usable(r) for r in rows)]
     if not tables:
         return
