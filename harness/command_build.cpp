@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <iostream>
 
+#include <sys/resource.h>
+
 #include "harness/cli_common.h"
 #include "harness/commands.h"
 #include "renderers/sdf/scene_hash.h"
@@ -42,7 +44,15 @@ ListStats leaf_list_stats(const sdf::SceneHash& hash) {
   return s;
 }
 
+// This process's peak resident memory so far (MB), as the kernel counts it.
+double peak_memory_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // KiB on Linux
+}
+
 void run_build(const BuildArgs& args) {
+  const auto wall_start = std::chrono::steady_clock::now();
   sdf::validate(args.options.scene_hash);
   if (!args.cache.empty()) check_output_path(args.cache, "--cache");
   const Scene scene = load_scene(args.scene);
@@ -54,10 +64,15 @@ void run_build(const BuildArgs& args) {
     const sdf::MeshDistanceGrid& g = sdf.mesh_grids.back();
     size_t longest = 0;
     for (size_t c = 0; c < g.cell_count(); ++c) longest = std::max<size_t>(longest, g.cell_begin[c + 1] - g.cell_begin[c]);
+    const size_t far = static_cast<size_t>(std::count_if(g.far_distance.begin(), g.far_distance.end(), [](float d) { return d != 0.0f; }));
     std::printf("mesh grid   %-8s %ux%ux%u cells (%.4g), triangles/cell mean %.1f max %zu, %.2f MB, %.0f ms\n",
                 mesh.name.c_str(), g.dims.x, g.dims.y, g.dims.z, g.cell_size,
                 static_cast<double>(g.cell_triangles.size()) / static_cast<double>(g.cell_count()), longest,
                 static_cast<double>(g.bytes()) / 1e6, g.build_ms);
+    if (!g.far_distance.empty())
+      std::printf("            scaled for %zu triangles: %u cells per extent, %zu of %zu cells far (a bound, no list)\n",
+                  mesh.triangle_count(), sdf::effective_cells_per_extent(args.options.mesh_grid, mesh.triangle_count()), far,
+                  g.cell_count());
   }
   std::fflush(stdout);
   sdf.hash = sdf::build_scene_hash(scene, sdf.mesh_grids, args.options.scene_hash);
@@ -68,6 +83,9 @@ void run_build(const BuildArgs& args) {
               h.params.lists == sdf::ListRule::Exact ? "exact" : "thesis");
   std::printf("            instances per leaf min %zu mean %.2f max %zu, %.2f MB, %.0f ms\n", lists.min, lists.mean,
               lists.max, static_cast<double>(h.bytes()) / 1e6, h.build_ms);
+  std::printf("total       %.1f s (scene, mesh grids, scene hash), peak memory %.0f MB\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(), peak_memory_mb());
+  std::fflush(stdout);
   if (args.cache.empty()) return;
   for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
   const auto start = std::chrono::steady_clock::now();
