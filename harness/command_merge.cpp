@@ -23,8 +23,7 @@ struct MergeArgs {
 // The rows of one run only: a shard file left from an earlier run with other settings (same
 // file name, same shard count) must not slip into the merge. CSVs from before run_id have none.
 void check_same_run(const CsvTable& t, const CsvTable& first) {
-  const auto has_run_id = [](const CsvTable& c) { return std::find(c.columns.begin(), c.columns.end(), "run_id") != c.columns.end(); };
-  if (!has_run_id(t) || t.rows.empty() || first.rows.empty()) return;
+  if (!t.has_column("run_id") || t.rows.empty() || first.rows.empty()) return;
   const size_t column = t.column("run_id");
   for (const auto& row : t.rows)
     if (row[column] != first.rows.front()[column])

@@ -1,5 +1,7 @@
 #include "harness/csv.h"
 
+#include <algorithm>
+
 #include "scenes/error.h"
 #include "util/atomic_file.h"
 #include "util/input_file.h"
@@ -10,6 +12,10 @@ size_t CsvTable::column(const std::string& name) const {
   for (size_t i = 0; i < columns.size(); ++i)
     if (columns[i] == name) return i;
   throw Error((source.empty() ? "CSV" : "'" + source + "'") + " has no column '" + name + "'");
+}
+
+bool CsvTable::has_column(const std::string& name) const {
+  return std::find(columns.begin(), columns.end(), name) != columns.end();
 }
 
 std::string csv_escape(const std::string& field) {

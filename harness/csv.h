@@ -15,6 +15,7 @@ struct CsvTable {
 
   // Index of a column; throws Error naming the file when it is missing.
   size_t column(const std::string& name) const;
+  bool has_column(const std::string& name) const;
 };
 
 std::string csv_escape(const std::string& field);

@@ -359,6 +359,15 @@ glm::uvec3 cell_coords(const MeshDistanceGrid& grid, const glm::vec3& p) {
   return c;
 }
 
+// The coordinates of cell index `cell`, and a cell's centre.
+glm::uvec3 coords_of_index(const MeshDistanceGrid& grid, uint32_t cell) {
+  return glm::uvec3(cell % grid.dims.x, (cell / grid.dims.x) % grid.dims.y, cell / (grid.dims.x * grid.dims.y));
+}
+
+glm::vec3 cell_centre(const MeshDistanceGrid& grid, const glm::uvec3& c) {
+  return grid.origin + (glm::vec3(c) + 0.5f) * grid.cell_size;
+}
+
 uint32_t cell_of(const MeshDistanceGrid& grid, const glm::vec3& p) {
   const glm::uvec3 c = cell_coords(grid, p);
   return c.x + grid.dims.x * (c.y + grid.dims.y * c.z);
@@ -471,8 +480,7 @@ FarField far_field(const MeshDistanceGrid& grid, const Mesh& mesh) {
 // A far cell's bound at p (> 0), or 0 for a listed cell.
 float far_bound(const MeshDistanceGrid& grid, uint32_t cell, const glm::vec3& p) {
   if (grid.far_distance.empty() || grid.far_distance[cell] == 0.0f) return 0.0f;
-  const glm::uvec3 c(cell % grid.dims.x, (cell / grid.dims.x) % grid.dims.y, cell / (grid.dims.x * grid.dims.y));
-  const float from_centre = glm::length(p - (grid.origin + (glm::vec3(c) + 0.5f) * grid.cell_size));
+  const float from_centre = glm::length(p - cell_centre(grid, coords_of_index(grid, cell)));
   // >= bound - h >= 0.63 cells: never 0, never a hit.
   return std::abs(grid.far_distance[cell]) - from_centre;
 }
@@ -545,7 +553,11 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
   const FarField field = far_cells ? far_field(grid, mesh) : FarField{};
   const uint32_t rows = grid.dims.y * grid.dims.z;
   std::vector<std::vector<uint32_t>> row_counts(rows), row_lists(rows);
-  std::vector<std::vector<float>> row_far(far_cells ? rows : 0), row_far_upper(far_cells ? rows : 0);
+  // Far cells: each row writes its own cells' bounds in place (0: a listed cell).
+  if (far_cells) {
+    grid.far_distance.assign(grid.cell_count(), 0.0f);
+    grid.far_upper.assign(grid.cell_count(), 0.0f);
+  }
   // The lists' memory as they grow, against the cap (checked per row, before the next one).
   std::atomic<uint64_t> list_bytes{grid.cell_count() * sizeof(uint32_t)};
   ProgressMeter progress("mesh grid '" + mesh.name + "' (" + std::to_string(mesh.triangles.size()) + " triangles)", rows,
@@ -566,16 +578,12 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
         q.lo = grid.origin + glm::vec3(x, y, z) * s;
         q.hi = q.lo + s;
         if (far_cells) {
-          std::vector<float>& far = row_far[row];
-          std::vector<float>& far_up = row_far_upper[row];
-          far.resize(grid.dims.x, 0.0f);
-          far_up.resize(grid.dims.x, 0.0f);
           const size_t cell = x + static_cast<size_t>(grid.dims.x) * row;
           if (field.steps[cell] >= kFarSteps) {
             const float bound = (static_cast<float>(field.steps[cell]) - 0.5f) * s - slack;
-            far[x] = field.outside[cell] ? bound : -bound;
+            grid.far_distance[cell] = field.outside[cell] ? bound : -bound;
             // The distance to one real triangle nearby: an upper bound (the scene hash's lists need one).
-            far_up[x] = std::sqrt(closest_on_mesh_triangle(mesh, field.source[cell], q.lo + half).distance_squared) + slack;
+            grid.far_upper[cell] = std::sqrt(closest_on_mesh_triangle(mesh, field.source[cell], q.lo + half).distance_squared) + slack;
             counts[x] = 0;
             continue;
           }
@@ -609,17 +617,9 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
   grid.cell_begin.reserve(grid.cell_count() + 1);
   grid.cell_triangles.reserve(total);
   grid.cell_begin.push_back(0);
-  if (far_cells) {
-    grid.far_distance.reserve(grid.cell_count());
-    grid.far_upper.reserve(grid.cell_count());
-  }
   for (uint32_t row = 0; row < rows; ++row) {
     for (uint32_t c : row_counts[row]) grid.cell_begin.push_back(grid.cell_begin.back() + c);
     grid.cell_triangles.insert(grid.cell_triangles.end(), row_lists[row].begin(), row_lists[row].end());
-    if (far_cells) {
-      grid.far_distance.insert(grid.far_distance.end(), row_far[row].begin(), row_far[row].end());
-      grid.far_upper.insert(grid.far_upper.end(), row_far_upper[row].begin(), row_far_upper[row].end());
-    }
   }
   grid.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return grid;
@@ -656,8 +656,7 @@ float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::v
 float grid_upper_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p) {
   if (in_far_cell(grid, p)) {
     const uint32_t cell = cell_of(grid, p);
-    const glm::uvec3 c(cell % grid.dims.x, (cell / grid.dims.x) % grid.dims.y, cell / (grid.dims.x * grid.dims.y));
-    return grid.far_upper[cell] + glm::length(p - (grid.origin + (glm::vec3(c) + 0.5f) * grid.cell_size));
+    return grid.far_upper[cell] + glm::length(p - cell_centre(grid, coords_of_index(grid, cell)));
   }
   return grid_distance(grid, mesh, p);
 }
@@ -677,7 +676,7 @@ MeshTraceLists make_trace_lists(const MeshDistanceGrid& grid, const Mesh& mesh) 
     for (uint32_t y = 0; y < grid.dims.y; ++y) {
       for (uint32_t x = 0; x < grid.dims.x; ++x) {
         const uint32_t c = x + grid.dims.x * (y + grid.dims.y * z);
-        const glm::vec3 centre = grid.origin + (glm::vec3(x, y, z) + 0.5f) * grid.cell_size;
+        const glm::vec3 centre = cell_centre(grid, glm::uvec3(x, y, z));
         cell.clear();
         for (uint32_t i = grid.cell_begin[c]; i < grid.cell_begin[c + 1]; ++i)
           cell.emplace_back(closest_on_mesh_triangle(mesh, grid.cell_triangles[i], centre).distance_squared,
@@ -704,7 +703,7 @@ float traced_grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const
     closest_triangle = kFarCellTriangle;
     return far;
   }
-  const float from_centre = glm::length(p - (grid.origin + (glm::vec3(c) + 0.5f) * grid.cell_size));
+  const float from_centre = glm::length(p - cell_centre(grid, c));
   float best = kInf;
   for (uint32_t i = grid.cell_begin[cell]; i < grid.cell_begin[cell + 1]; ++i) {
     if (past_the_best(lists.centre_distances[i], from_centre, best)) break;
