@@ -24,6 +24,9 @@ while [[ $# -gt 0 ]]; do
     *) echo "profile_sdf_kernel.sh: error: unknown argument '$1' (see --help)" >&2; exit 1 ;;
   esac
 done
+for value in "$warmup" "$seconds"; do
+  [[ $value =~ ^[0-9]+$ && $value -gt 0 ]] || { echo "profile_sdf_kernel.sh: error: --warmup-s and --seconds take whole seconds > 0, not '$value'" >&2; exit 1; }
+done
 for tool in perf objdump; do
   command -v "$tool" >/dev/null || { echo "profile_sdf_kernel.sh: error: '$tool' not found (Debian: linux-perf, binutils)" >&2; exit 1; }
 done
