@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# One prepared run for a machine with a GPU (issue 17): the device's `info`, the image agreement
+# of every Vulkan backend with Embree (the thesis meshes x100 in primary and shadow mode, fig6_1
+# and fig6_3 in whitted mode), then the thesis tables, all under one folder named after the
+# device. The tables run under a wall-clock limit; their CSV is rewritten after every row, so a
+# second call with the same flags (--resume) finishes what the limit cut.
+#
+#   harness/scripts/gpu_run.sh [--device gpu] [--size 1280x720] [--compare-size 640x360]
+#       [--budget-s 2] [--frames 3] [--minutes 8] [--out results] [--binary build/sdfbench]
+#       [--tables-only] [-- TABLE_FLAGS...]   (e.g. -- --table 6.3 --objects 1,10: passed to `sdfbench table`)
+#
+# On lavapipe, as a check of the script: --device lavapipe --size 64x36 --compare-size 64x36.
+# --binary defaults to $SDFBENCH, else build/sdfbench (a bundle's launcher goes there).
+# Exit status: 0 when every compare agreed and the tables finished, 2 when a compare disagreed,
+# 3 when the tables were cut by --minutes (run it again, with --tables-only to skip the info and
+# the compares already done, to finish), 1 on an error.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=results
+binary=${SDFBENCH:-build/sdfbench}
+table_flags=() tables_only=0
+die() { echo "gpu_run.sh: error: $*" >&2; exit 1; }
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --device|--size|--compare-size|--budget-s|--frames|--minutes|--out|--binary)
+      [[ $# -ge 2 ]] || die "$1 needs a value"
+      case "$1" in
+        --device) device=$2 ;; --size) size=$2 ;; --compare-size) compare_size=$2 ;; --budget-s) budget=$2 ;;
+        --frames) frames=$2 ;; --minutes) minutes=$2 ;; --out) out=$2 ;; --binary) binary=$2 ;;
+      esac
+      shift 2 ;;
+    --tables-only) tables_only=1; shift ;;
+    --) shift; table_flags=("$@"); break ;;
+    -h|--help) sed -n 2,17p "$0"; exit 0 ;;
+    *) die "unknown argument '$1' (see --help)" ;;
+  esac
+done
+[[ $minutes =~ ^[0-9]+$ && $minutes -gt 0 ]] || die "--minutes takes whole minutes > 0, not '$minutes'"
+[[ -x $binary ]] || die "--binary '$binary' is not an executable (build first, or set SDFBENCH)"
+
+# The device's name, as the renderer reports it, names the folder.
+probe=$("$binary" render --scene thesis:sphere:1 --backend sdf-hash --size 16x9 --frames 1 --warmup 0 --device "$device" 2>&1) ||
+  die "no Vulkan device '$device': $(grep -m1 'error' <<<"$probe" || tail -1 <<<"$probe")"
+name=$(sed -n 's/^backend  *sdf-hash on \(.*\) \[.*$/\1/p' <<<"$probe" | head -1)
+[[ -n $name ]] || die "could not read the device's name from: $(head -3 <<<"$probe")"
+slug=$(tr 'A-Z' 'a-z' <<<"$name" | sed 's/[^a-z0-9]\+/-/g; s/^-//; s/-$//')
+dir="$out/$slug"
+mkdir -p "$dir"
+echo "gpu_run: device '$name' -> $dir" >&2
+
+agreement="$dir/agreement.txt" disagreed=0
+if [[ $tables_only -eq 0 ]]; then
+  backends=tri-aabb,bvh,sdf-hash,sdf-octree
+  if "$binary" render --scene thesis:sphere:1 --backend vk-rt --size 16x9 --frames 1 --warmup 0 --device "$device" >/dev/null 2>&1; then
+    backends=$backends,vk-rt
+  else
+    echo "gpu_run: vk-rt does not run on '$name': left out of the compares" >&2
+  fi
+
+  {
+    echo "# $(date -u +%Y-%m-%dT%H:%M:%SZ) harness/scripts/gpu_run.sh on $(hostname)"
+    "$binary" --version
+    "$binary" info
+  } >"$dir/info.txt" 2>&1
+
+  # Agreement: each compare's table, and one line per compare with its exit status.
+  : >"$agreement"
+  run_compare() {  # SCENE MODE
+    echo "gpu_run: compare $1 $2" >&2
+    local status=0
+    {
+      echo "## sdfbench compare --scene $1 --mode $2 --backends embree,$backends --size $compare_size --device $device"
+      "$binary" compare --scene "$1" --mode "$2" --backends "embree,$backends" --size "$compare_size" --device "$device" 2>&1 || status=$?
+      echo "exit $status"
+      echo
+    } >>"$agreement"
+    case $status in 0) ;; 2) disagreed=1 ;; *) die "compare of $1 ($2) failed; see $agreement" ;; esac
+  }
+  for mesh in bunny teapot monkey sphere; do
+    for mode in primary shadow; do run_compare "thesis:$mesh:100" "$mode"; done
+  done
+  for scene in scenes/fig6_1.json scenes/fig6_3.json; do run_compare "$scene" whitted; done
+fi
+
+# The tables, under the wall-clock limit (a cut run resumes on the next call).
+echo "gpu_run: tables at $size, ${budget} s per configuration, at most $minutes min" >&2
+table=("$binary" table --size "$size" --budget-s "$budget" --frames "$frames" --device "$device" --resume
+       --csv "$dir/tables.csv" --markdown "$dir/tables.md" "${table_flags[@]}")
+echo "${table[*]}" >"$dir/tables_command.txt"
+status=0
+timeout --signal=INT "${minutes}m" "${table[@]}" || status=$?
+case $status in
+  0) ;;
+  124|130) echo "gpu_run: the tables were cut at $minutes min; run the same command again (with --tables-only) to finish them" >&2; exit 3 ;;
+  *) die "the tables failed (exit $status)" ;;
+esac
+[[ $disagreed -eq 0 ]] || { echo "gpu_run: a compare disagreed; see $agreement" >&2; exit 2; }
+echo "gpu_run: done: $dir (info.txt, agreement.txt, tables.csv, tables.md)" >&2

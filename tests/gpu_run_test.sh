@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# harness/scripts/gpu_run.sh end to end on lavapipe at a tiny size (issue 17): the device folder,
+# every compare agreeing, the tables' rows, and one-line errors for bad flags and devices.
+# Usage: tests/gpu_run_test.sh SDFBENCH_BINARY
+set -euo pipefail
+binary=$(realpath "$1")
+root=$(cd "$(dirname "$0")/.." && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+script=$root/harness/scripts/gpu_run.sh
+
+"$script" --binary "$binary" --device lavapipe --size 32x18 --compare-size 32x18 --budget-s 1 --frames 1 \
+  --out "$work/out" -- --table 6.3 --meshes sphere --objects 1,10 --check-size 32x18 >"$work/log" 2>&1 ||
+  { tail -20 "$work/log"; fail "gpu_run.sh on lavapipe exited $?"; }
+dir=$(echo "$work"/out/llvmpipe-*)
+[[ -d $dir ]] || fail "no folder named after the device under $work/out: $(ls "$work/out")"
+for f in info.txt agreement.txt tables.csv tables.md tables_command.txt; do [[ -s $dir/$f ]] || fail "$f missing or empty"; done
+grep -q "Vulkan devices" "$dir/info.txt" || fail "info.txt lacks sdfbench info's device list"
+[[ $(grep -c '^exit 0$' "$dir/agreement.txt") -eq 10 ]] || fail "expected 10 agreeing compares: $(grep '^exit' "$dir/agreement.txt" | sort | uniq -c)"
+grep -q "vk-rt" "$dir/agreement.txt" || fail "vk-rt (supported on lavapipe) left out of the compares"
+rows=$(($(wc -l <"$dir/tables.csv") - 1))
+[[ $rows -eq 12 ]] || fail "tables.csv has $rows rows, expected 12 (sphere x 1,10 objects x 6 backends)"
+grep -q -- "--device lavapipe" "$dir/tables_command.txt" || fail "tables_command.txt does not record the command"
+# Again with --tables-only: no compares, the finished tables kept as they are.
+cp "$dir/tables.csv" "$work/before.csv"
+"$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --out "$work/out" --tables-only \
+  -- --table 6.3 --meshes sphere --objects 1,10 --check-size 32x18 >"$work/log2" 2>&1 || { tail -5 "$work/log2"; fail "--tables-only rerun exited non-zero"; }
+grep -q "12 configuration(s) already" "$work/log2" || fail "the rerun did not resume: $(grep -m2 resume "$work/log2")"
+! grep -q "gpu_run: compare" "$work/log2" || fail "--tables-only ran the compares"
+cmp -s "$work/before.csv" "$dir/tables.csv" || fail "the rerun changed the finished tables"
+
+# Bad input: one line naming the flag or device, exit 1.
+expect_error() {  # PATTERN ARGS...
+  local pattern=$1 status=0
+  shift
+  "$script" --binary "$binary" --out "$work/bad" "$@" >"$work/err" 2>&1 || status=$?
+  [[ $status -eq 1 ]] || fail "'$*' exited $status, expected 1"
+  grep -q "^gpu_run.sh: error: .*$pattern" "$work/err" || fail "'$*' said: $(cat "$work/err")"
+}
+expect_error "unknown argument '--bogus'" --bogus
+expect_error "no Vulkan device 'no-such-gpu'" --device no-such-gpu
+expect_error "--minutes takes whole minutes" --minutes 0
+expect_error "--binary '/nonexistent'" --binary /nonexistent
+expect_error "--size needs a value" --size
+[[ ! -e $work/bad ]] || fail "a refused run created its output folder"
+echo "gpu_run.sh test: all passed"
