@@ -64,14 +64,13 @@ void run_build(const BuildArgs& args) {
     const sdf::MeshDistanceGrid& g = sdf.mesh_grids.back();
     size_t longest = 0;
     for (size_t c = 0; c < g.cell_count(); ++c) longest = std::max<size_t>(longest, g.cell_begin[c + 1] - g.cell_begin[c]);
-    const size_t far = static_cast<size_t>(std::count_if(g.far_distance.begin(), g.far_distance.end(), [](float d) { return d != 0.0f; }));
     std::printf("mesh grid   %-8s %ux%ux%u cells (%.4g), triangles/cell mean %.1f max %zu, %.2f MB, %.0f ms\n",
                 mesh.name.c_str(), g.dims.x, g.dims.y, g.dims.z, g.cell_size,
                 static_cast<double>(g.cell_triangles.size()) / static_cast<double>(g.cell_count()), longest,
                 static_cast<double>(g.bytes()) / 1e6, g.build_ms);
     if (!g.far_distance.empty())
       std::printf("            scaled for %zu triangles: %u cells per extent, %zu of %zu cells far (a bound, no list)\n",
-                  mesh.triangle_count(), sdf::effective_cells_per_extent(args.options.mesh_grid, mesh.triangle_count()), far,
+                  mesh.triangle_count(), sdf::effective_cells_per_extent(args.options.mesh_grid, mesh.triangle_count()), g.far_cell_count(),
                   g.cell_count());
   }
   std::fflush(stdout);

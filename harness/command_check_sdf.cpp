@@ -150,7 +150,7 @@ void run_check_sdf(const CheckSdfArgs& args) {
   uint32_t list_min = UINT32_MAX, list_max = 0;
   size_t far_cells = 0;
   for (size_t c = 0; c < grid.cell_count(); ++c) {
-    if (!grid.far_distance.empty() && grid.far_distance[c] != 0.0f) {
+    if (grid.is_far(c)) {
       ++far_cells;  // a bound, no list
       continue;
     }

@@ -432,9 +432,7 @@ FarField far_field(const MeshDistanceGrid& grid, const Mesh& mesh) {
             queue.push_back(index({x, y, z}));
           }
   }
-  auto coords = [&](size_t i) {
-    return glm::ivec3(static_cast<int>(i % dims.x), static_cast<int>((i / dims.x) % dims.y), static_cast<int>(i / (static_cast<size_t>(dims.x) * dims.y)));
-  };
+  auto coords = [&](size_t i) { return glm::ivec3(coords_of_index(grid, static_cast<uint32_t>(i))); };
   for (size_t head = 0; head < queue.size(); ++head) {
     const glm::ivec3 c = coords(queue[head]);
     const uint16_t next = static_cast<uint16_t>(std::min<int>(f.steps[queue[head]] + 1, UINT16_MAX - 1));
@@ -479,7 +477,7 @@ FarField far_field(const MeshDistanceGrid& grid, const Mesh& mesh) {
 
 // A far cell's bound at p (> 0), or 0 for a listed cell.
 float far_bound(const MeshDistanceGrid& grid, uint32_t cell, const glm::vec3& p) {
-  if (grid.far_distance.empty() || grid.far_distance[cell] == 0.0f) return 0.0f;
+  if (!grid.is_far(cell)) return 0.0f;
   const float from_centre = glm::length(p - cell_centre(grid, coords_of_index(grid, cell)));
   // >= bound - h >= 0.63 cells: never 0, never a hit.
   return std::abs(grid.far_distance[cell]) - from_centre;
@@ -490,6 +488,10 @@ float far_bound(const MeshDistanceGrid& grid, uint32_t cell, const glm::vec3& p)
 size_t MeshDistanceGrid::bytes() const {
   return (cell_begin.size() + cell_triangles.size()) * sizeof(uint32_t) + (far_distance.size() + far_upper.size()) * sizeof(float) +
          (face_normals.size() + edge_normals.size() + vertex_normals.size()) * sizeof(glm::vec3);
+}
+
+size_t MeshDistanceGrid::far_cell_count() const {
+  return static_cast<size_t>(std::count_if(far_distance.begin(), far_distance.end(), [](float d) { return d != 0.0f; }));
 }
 
 bool has_far_cells(const MeshGridParams& params, size_t triangles) {
@@ -654,16 +656,18 @@ float grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::v
 }
 
 float grid_upper_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p) {
-  if (in_far_cell(grid, p)) {
-    const uint32_t cell = cell_of(grid, p);
-    return grid.far_upper[cell] + glm::length(p - cell_centre(grid, coords_of_index(grid, cell)));
+  glm::vec3 hi;
+  if (!grid.far_distance.empty() && in_box(grid, p, hi)) {
+    const glm::uvec3 c = cell_coords(grid, p);
+    const uint32_t cell = c.x + grid.dims.x * (c.y + grid.dims.y * c.z);
+    if (grid.is_far(cell)) return grid.far_upper[cell] + glm::length(p - cell_centre(grid, c));
   }
   return grid_distance(grid, mesh, p);
 }
 
 bool in_far_cell(const MeshDistanceGrid& grid, const glm::vec3& p) {
   glm::vec3 hi;
-  return !grid.far_distance.empty() && in_box(grid, p, hi) && grid.far_distance[cell_of(grid, p)] != 0.0f;
+  return !grid.far_distance.empty() && in_box(grid, p, hi) && grid.is_far(cell_of(grid, p));
 }
 
 MeshTraceLists make_trace_lists(const MeshDistanceGrid& grid, const Mesh& mesh) {

@@ -79,6 +79,9 @@ struct MeshDistanceGrid {
   double build_ms = 0;
 
   size_t bytes() const;  // payload: the CSR arrays and the pseudo-normals
+  // Whether `cell` is a far cell (a bound, no list), and how many there are.
+  bool is_far(size_t cell) const { return !far_distance.empty() && far_distance[cell] != 0.0f; }
+  size_t far_cell_count() const;
   size_t cell_count() const { return static_cast<size_t>(dims.x) * dims.y * dims.z; }
   glm::vec3 box_max() const { return origin + glm::vec3(dims) * cell_size; }
 };

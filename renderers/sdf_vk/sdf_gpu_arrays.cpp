@@ -117,7 +117,7 @@ SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const
     out.mesh_records.push_back(bits(mesh.bounds.min, first_triangle));
     out.mesh_records.push_back(bits(mesh.bounds.max, 0u));
     for (size_t c = 0; c < grid.cell_count(); ++c) {
-      if (!grid.far_distance.empty() && grid.far_distance[c] != 0.0f) {
+      if (grid.is_far(c)) {
         const uint32_t far = std::bit_cast<uint32_t>(std::abs(grid.far_distance[c])) | SDF_FAR_CELL;
         out.grid_cells.emplace_back(far, far);
       } else {
