@@ -58,7 +58,7 @@ if [[ $tables_only -eq 0 ]]; then
   fi
 
   {
-    echo "# $(date -u +%Y-%m-%dT%H:%M:%SZ) harness/scripts/gpu_run.sh on $(hostname)"
+    echo "# $(date -u +%Y-%m-%dT%H:%M:%SZ) harness/scripts/gpu_run.sh on $(uname -n)"
     "$binary" --version
     "$binary" info
   } >"$dir/info.txt" 2>&1
