@@ -11,7 +11,7 @@ struct Agreement {
   double id_percent = 0;         // same instance id, over pixels where either hit an instance
   size_t id_mismatches = 0;      // pixels where either hit an instance and the ids differ
   double depth_p99 = 0;          // 99th percentile of |t - t_ref| / t_ref where both hit the same thing
-  double mean_error = 0;         // shaded image, OpenImageIO compare (display-encoded RGB)
+  double mean_error = 0;         // shaded image (display-encoded RGB), as OpenImageIO compare
   double rms_error = 0;
   double psnr = 0;               // dB; infinity for identical images
   double over_threshold_percent = 0;  // pixels with a channel error > kPixelFailThreshold

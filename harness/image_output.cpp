@@ -1,48 +1,35 @@
 #include "harness/image_output.h"
 
 #include <algorithm>
-#include <cctype>
-#include <memory>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 
 #include "renderers/shading/gpu_types.h"
 #include "scenes/error.h"
 #include "util/atomic_file.h"
+#include "util/image_codec.h"
 
 namespace sdfbench {
 namespace {
 
 namespace fs = std::filesystem;
 
-// An image writer for `path`'s format that can encode into memory, or Error naming `what`.
-std::unique_ptr<OIIO::ImageOutput> create_output(const fs::path& path, const std::string& what) {
-  auto out = OIIO::ImageOutput::create(path.string());
-  if (!out) throw Error(what + " '" + path.string() + "': unsupported image format (use .png, .exr, .tif, ...)");
-  if (!out->supports("ioproxy"))
-    throw Error(what + " '" + path.string() + "': OpenImageIO cannot write " + out->format_name() +
-                " images to memory, which sdfbench needs to write them safely (use .png, .exr, .tif, ...)");
-  return out;
+// The format of `path` by its extension, or Error naming `what`.
+ImageFormat format_of(const fs::path& path, const std::string& what) {
+  const std::optional<ImageFormat> format = image_format_of(path);
+  if (!format)
+    throw Error(what + " '" + path.string() + "': unsupported image format '" + path.extension().string() + "' (use " +
+                kImageExtensions + ")");
+  return *format;
 }
 
 // Encoded in memory, then written with write_file_atomically: the image goes through the one
-// safe way to write an output, never through a file OpenImageIO opens by name.
-void write_atomically(const fs::path& path, const OIIO::ImageSpec& spec, const void* pixels, OIIO::TypeDesc type) {
-  auto out = create_output(path, "cannot write");
-  std::vector<unsigned char> encoded;
-  OIIO::Filesystem::IOVecOutput memory(encoded);
-  if (!out->set_ioproxy(&memory) || !out->open(path.string(), spec) || !out->write_image(type, pixels) || !out->close())
-    throw Error("cannot write '" + path.string() + "': " + out->geterror());
-  out.reset();
+// safe way to write an output.
+void write_atomically(const fs::path& path, const FloatImage& image) {
+  const std::vector<unsigned char> encoded = encode_image(image, format_of(path, "cannot write"), "'" + path.string() + "'");
   write_file_atomically(path, std::as_bytes(std::span(encoded.data(), encoded.size())));
 }
 
-bool is_exr(const fs::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".exr";
-}
+bool is_exr(const fs::path& path) { return image_format_of(path) == ImageFormat::exr; }
 
 float id_to_float(uint32_t id) {
   if (id == shading::NO_INSTANCE_VALUE) return -1.0f;
@@ -64,7 +51,7 @@ glm::vec3 colour_map(float x) {
 
 void check_image_path(const fs::path& path, const char* what) {
   check_output_path(path, what);
-  create_output(path, what);
+  format_of(path, what);
 }
 
 void check_aov_path(const fs::path& path, const char* what) {
@@ -74,10 +61,10 @@ void check_aov_path(const fs::path& path, const char* what) {
 }
 
 void write_color_image(const FrameImages& images, const fs::path& path) {
-  OIIO::ImageSpec spec(static_cast<int>(images.width), static_cast<int>(images.height), 4, OIIO::TypeDesc::FLOAT);
-  const std::string ext = path.extension().string();
-  if (ext != ".exr" && ext != ".hdr") spec.set_format(OIIO::TypeDesc::UINT8);
-  write_atomically(path, spec, images.color.data(), OIIO::TypeDesc::FLOAT);
+  FloatImage image{images.width, images.height, {"R", "G", "B", "A"}, {}};
+  image.pixels.reserve(images.color.size() * 4);
+  for (const glm::vec4& c : images.color) image.pixels.insert(image.pixels.end(), {c.x, c.y, c.z, c.w});
+  write_atomically(path, image);
 }
 
 HeatmapRange write_heatmap(const std::vector<uint32_t>& values, uint32_t width, uint32_t height, const fs::path& path) {
@@ -87,22 +74,23 @@ HeatmapRange write_heatmap(const std::vector<uint32_t>& values, uint32_t width, 
     std::sort(sorted.begin(), sorted.end());
     range = {sorted[(sorted.size() - 1) * 99 / 100], sorted.back()};
   }
-  std::vector<glm::vec3> rgb;
-  rgb.reserve(values.size());
-  for (uint32_t v : values)
-    rgb.push_back(colour_map(range.top > 0 ? static_cast<float>(v) / static_cast<float>(range.top) : 0.0f));
-  OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 3, OIIO::TypeDesc::UINT8);
-  write_atomically(path, spec, rgb.data(), OIIO::TypeDesc::FLOAT);
+  FloatImage image{width, height, {"R", "G", "B"}, {}};
+  image.pixels.reserve(values.size() * 3);
+  for (uint32_t v : values) {
+    const glm::vec3 c = colour_map(range.top > 0 ? static_cast<float>(v) / static_cast<float>(range.top) : 0.0f);
+    image.pixels.insert(image.pixels.end(), {c.x, c.y, c.z});
+  }
+  write_atomically(path, image);
   return range;
 }
 
 void write_aov_image(const FrameImages& images, const fs::path& path) {
   check_aov_path(path, "--aov");
   constexpr int kChannels = 7;
-  OIIO::ImageSpec spec(static_cast<int>(images.width), static_cast<int>(images.height), kChannels, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = {"hit", "depth", "instance_id", "primitive_id", "N.x", "N.y", "N.z"};
+  FloatImage image{images.width, images.height, {"hit", "depth", "instance_id", "primitive_id", "N.x", "N.y", "N.z"}, {}};
   const size_t pixels = images.depth.size();
-  std::vector<float> data(pixels * kChannels);
+  std::vector<float>& data = image.pixels;
+  data.resize(pixels * kChannels);
   for (size_t i = 0; i < pixels; ++i) {
     float* px = &data[i * kChannels];
     const uint32_t id = images.instance_id[i];
@@ -114,7 +102,7 @@ void write_aov_image(const FrameImages& images, const fs::path& path) {
     px[5] = images.normal[i].y;
     px[6] = images.normal[i].z;
   }
-  write_atomically(path, spec, data.data(), OIIO::TypeDesc::FLOAT);
+  write_atomically(path, image);
 }
 
 }  // namespace sdfbench

@@ -6,8 +6,8 @@
 namespace sdfbench {
 
 // Fails early (before a long render) when `path` cannot be written: missing or read-only
-// directory, something other than a regular file in its place, or an image format OpenImageIO
-// does not know or cannot encode into memory.
+// directory, something other than a regular file in its place, or an extension that is not an
+// image format sdfbench writes (util/image_codec.h).
 void check_image_path(const std::filesystem::path& path, const char* what);
 // The same for the AOV file, which must also be an EXR (the only format holding its 7 float channels).
 void check_aov_path(const std::filesystem::path& path, const char* what);

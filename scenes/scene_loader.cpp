@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <map>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <glm/gtc/quaternion.hpp>
 
 #include "scenes/error.h"
 #include "scenes/implicit_parser.h"
 #include "scenes/json_field.h"
+#include "util/image_codec.h"
 #include "util/input_file.h"
 
 namespace sdfbench {
@@ -37,39 +36,34 @@ constexpr uint64_t kMaxImageFileBytes = 256ull << 20;
 
 // Decodes an image into Scene::texels as linear RGBA: integer formats are display-encoded, so
 // gamma 2.2 is undone (the inverse of the image encoding); float formats are taken as linear.
-// Grey images fill rgb; alpha is ignored. OpenImageIO reads the bytes from memory: the file
-// itself was opened by read_input_bytes (a FIFO or /dev/zero is refused, not read for ever).
+// Grey images fill rgb; alpha is ignored. The codecs read the bytes from memory: the file itself
+// was opened by read_input_bytes (a FIFO or /dev/zero is refused, not read for ever).
 Texture load_texture(const JsonField& field, const std::filesystem::path& path, Scene& scene) {
   const std::string name = "image '" + path.string() + "'";
-  std::vector<std::byte> bytes;
-  try {
-    bytes = read_input_bytes(path, "image", kMaxImageFileBytes);
-  } catch (const Error& e) {
-    field.fail(e.what());
-  }
-  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
-  auto in = OIIO::ImageInput::open(path.string(), nullptr, &memory);
-  if (!in) field.fail("cannot read " + name + ": " + OIIO::geterror());
-  const OIIO::ImageSpec spec = in->spec();
-  if (spec.width < 1 || spec.height < 1 || spec.width > 16384 || spec.height > 16384 || spec.depth != 1 ||
-      spec.nchannels < 1)
-    field.fail(name + " must be 2D with sides between 1 and 16384 and at least one channel");
-  const uint64_t texels = uint64_t(spec.width) * uint64_t(spec.height);
+  // A failure to read becomes an error of this field.
+  const auto named = [&](auto&& read) {
+    try {
+      return read();
+    } catch (const Error& e) {
+      field.fail(e.what());
+    }
+  };
+  const std::vector<std::byte> bytes = named([&] { return read_input_bytes(path, "image", kMaxImageFileBytes); });
+  const ImageHeader header = named([&] { return read_image_header(bytes, name); });
+  if (header.width > 16384 || header.height > 16384) field.fail(name + " must have sides between 1 and 16384");
+  const uint64_t texels = uint64_t(header.width) * uint64_t(header.height);
   if (scene.texels.size() + texels > kMaxSceneTexels)
-    field.fail(name + " is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " texels" +
+    field.fail(name + " is " + std::to_string(header.width) + "x" + std::to_string(header.height) + " texels" +
                (scene.texels.empty() ? "" : " (plus " + std::to_string(scene.texels.size()) + " in other textures)") +
                ", more than the " + std::to_string(kMaxSceneTexels) + " texels a scene may hold (4096x4096, " +
                describe_bytes(kMaxSceneTexels * sizeof(glm::vec4)) + " as RGBA floats)");
-  const int channels = std::min(spec.nchannels, 3);  // rgb or grey: alpha and extra channels are not read
-  std::vector<float> pixels(texels * channels);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-    field.fail("cannot read " + name + ": " + in->geterror());
-  const bool linear = spec.format.is_floating_point();
-  Texture texture{path, static_cast<uint32_t>(scene.texels.size()), static_cast<uint32_t>(spec.width),
-                  static_cast<uint32_t>(spec.height)};
-  for (size_t i = 0; i < pixels.size(); i += channels) {
-    glm::vec3 rgb = channels == 3 ? glm::vec3(pixels[i], pixels[i + 1], pixels[i + 2]) : glm::vec3(pixels[i]);
-    if (!linear) rgb = glm::pow(glm::max(rgb, 0.0f), glm::vec3(2.2f));
+  const DecodedImage image = named([&] { return decode_image(bytes, name); });
+  const uint32_t channels = image.header.channels;
+  Texture texture{path, static_cast<uint32_t>(scene.texels.size()), image.header.width, image.header.height};
+  for (size_t i = 0; i < image.pixels.size(); i += channels) {
+    const float* p = &image.pixels[i];
+    glm::vec3 rgb = channels >= 3 ? glm::vec3(p[0], p[1], p[2]) : glm::vec3(p[0]);  // grey (+ alpha) or RGB(A)
+    if (!image.linear) rgb = glm::pow(glm::max(rgb, 0.0f), glm::vec3(2.2f));
     scene.texels.emplace_back(rgb, 1.0f);
   }
   return texture;

@@ -10,7 +10,8 @@
 #       [--tables-only] [-- TABLE_FLAGS...]   (e.g. -- --table 6.3 --objects 1,10: passed to `sdfbench table`)
 #
 # On lavapipe, as a check of the script: --device lavapipe --size 64x36 --compare-size 64x36.
-# --binary defaults to $SDFBENCH, else build/sdfbench (a bundle's launcher goes there).
+# --binary defaults to $SDFBENCH, else build/sdfbench, else ./sdfbench (the launcher at the top
+# of a bundle from make_bundle.sh, where this script is harness/scripts/gpu_run.sh).
 # Exit status: 0 when every compare agreed and the tables finished, 2 when a compare disagreed,
 # 3 when the tables were cut by --minutes (run it again, with --tables-only to skip the info and
 # the compares already done, to finish), 1 on an error.
@@ -18,6 +19,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=results
 binary=${SDFBENCH:-build/sdfbench}
+[[ -n ${SDFBENCH:-} || -x $binary || ! -x sdfbench ]] || binary=./sdfbench
 table_flags=() tables_only=0
 die() { echo "gpu_run.sh: error: $*" >&2; exit 1; }
 while [[ $# -gt 0 ]]; do
@@ -31,7 +33,7 @@ while [[ $# -gt 0 ]]; do
       shift 2 ;;
     --tables-only) tables_only=1; shift ;;
     --) shift; table_flags=("$@"); break ;;
-    -h|--help) sed -n 2,17p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,18p "$0"; exit 0 ;;
     *) die "unknown argument '$1' (see --help)" ;;
   esac
 done

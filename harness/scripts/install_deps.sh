@@ -12,7 +12,7 @@ packages=(
   libvulkan-dev vulkan-validationlayers vulkan-tools
   glslang-dev glslang-tools libglm-dev
   libembree-dev libtbb-dev
-  libopenimageio-dev openimageio-tools
+  libopenexr-dev libstb-dev libopenimageio-dev openimageio-tools
   libbenchmark-dev libgtest-dev
   libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libmeshoptimizer-dev libopenmesh-dev
   python3-matplotlib

@@ -1,0 +1,59 @@
+#include "util/image_codec.h"
+
+#include <cctype>
+#include <exception>
+
+#include "scenes/error.h"
+
+namespace sdfbench {
+namespace {
+
+constexpr uint32_t kMaxSide = 16384;  // 1 GiB of RGBA floats: nothing larger is decoded
+
+// Runs a codec call; its failure (Error, an OpenEXR exception, bad_alloc) becomes one Error.
+template <typename F>
+auto guarded(const std::string& what, F&& call) {
+  try {
+    return call();
+  } catch (const std::exception& e) {
+    throw Error(what + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+std::optional<ImageFormat> image_format_of(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".png") return ImageFormat::png;
+  if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::jpeg;
+  if (ext == ".bmp") return ImageFormat::bmp;
+  if (ext == ".tga") return ImageFormat::tga;
+  if (ext == ".hdr") return ImageFormat::hdr;
+  if (ext == ".exr") return ImageFormat::exr;
+  return std::nullopt;
+}
+
+ImageHeader read_image_header(std::span<const std::byte> bytes, const std::string& name) {
+  return guarded("cannot read " + name, [&] { return codec::is_exr(bytes) ? codec::exr_header(bytes) : codec::stb_header(bytes); });
+}
+
+DecodedImage decode_image(std::span<const std::byte> bytes, const std::string& name) {
+  const ImageHeader header = read_image_header(bytes, name);
+  if (header.width > kMaxSide || header.height > kMaxSide)
+    throw Error("cannot read " + name + ": " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+                " is larger than " + std::to_string(kMaxSide) + " on a side");
+  return guarded("cannot read " + name, [&] { return codec::is_exr(bytes) ? codec::exr_decode(bytes) : codec::stb_decode(bytes); });
+}
+
+std::vector<unsigned char> encode_image(const FloatImage& image, ImageFormat format, const std::string& name) {
+  const size_t channels = image.channel_names.size();
+  if (image.width < 1 || image.height < 1 || channels < 1 ||
+      image.pixels.size() != size_t(image.width) * image.height * channels)
+    throw Error("internal: an image to encode has no pixels or the wrong number of values");
+  if (format != ImageFormat::exr && channels > 4)
+    throw Error("cannot write " + name + ": " + std::to_string(channels) + " channels need an EXR file (use .exr)");
+  return guarded("cannot write " + name, [&] { return format == ImageFormat::exr ? codec::exr_encode(image) : codec::stb_encode(image, format); });
+}
+
+}  // namespace sdfbench
