@@ -19,31 +19,33 @@ root=$work/root
 fail() { echo "minbase_test: FAIL: $*" >&2; exit 1; }
 say() { echo "minbase_test: $*"; }
 [[ $(id -u) -eq 0 ]] || fail "needs root (debootstrap, chroot and mounts)"
-[[ ${1:-} == --fresh ]] && rm -rf "$root"
 
-mounted=()
-cleanup() {
-  for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do umount -l "${mounted[i]}" 2>/dev/null || true; done
+# Everything mounted inside the root (also by an earlier run that was killed), deepest first:
+# unmounted before the root is removed, so that rm never walks into the host's /dev.
+unmount_root() {
+  local m
+  for m in $(awk -v r="$root/" 'index($2, r) == 1 {print $2}' /proc/mounts | sort -r); do umount -l "$m" || true; done
 }
-trap cleanup EXIT
+remove_root() { unmount_root; rm -rf --one-file-system "$root"; }
+trap unmount_root EXIT
+[[ ${1:-} == --fresh ]] && remove_root
 
 if [[ ! -f $root/.minbase-ready ]]; then
   command -v debootstrap >/dev/null || {
     say "installing debootstrap"
     apt-get install -y -qq --no-install-recommends debootstrap >/dev/null || { apt-get update -qq && apt-get install -y -qq --no-install-recommends debootstrap >/dev/null; }
   }
-  rm -rf "$root"
+  remove_root
   mkdir -p "$work"
   say "debootstrap --variant=minbase bookworm (a few minutes)"
   debootstrap --variant=minbase bookworm "$root" "$mirror" >"$work/debootstrap.log" 2>&1 ||
     { tail -20 "$work/debootstrap.log"; fail "debootstrap failed (log: $work/debootstrap.log)"; }
   touch "$root/.minbase-ready"
 fi
-for m in proc sys dev; do
-  mkdir -p "$root/$m"
-  case $m in proc) mount -t proc proc "$root/proc" ;; sys) mount -t sysfs sys "$root/sys" ;; dev) mount --bind /dev "$root/dev" ;; esac
-  mounted+=("$root/$m")
-done
+unmount_root
+mount -t proc proc "$root/proc"
+mount -t sysfs sys "$root/sys"
+mount --bind /dev "$root/dev"
 cp /etc/resolv.conf "$root/etc/resolv.conf"
 in_root() { chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root "$@"; }
 no_dev_packages() {
