@@ -58,6 +58,7 @@ Measurement configuration_fields(const BenchConfig& config, size_t run_index, co
     m.hit_footprint = t.footprint;
     m.over_relax = t.over_relax;
     m.cell_bound = t.cell_bound ? 1.0 : 0.0;
+    m.storage_tables = t.storage_tables ? 1.0 : 0.0;
   }
   m.requested_frames = settings.frames;
   m.warmup = settings.warmup;

@@ -149,6 +149,10 @@ void add_tracing_options(CLI::App& command, sdf::SphereTraceParams& tracing, con
                    "Vulkan SDF kernels: a step from an octree leaf (hash cell) that no listed instance's box comes "
                    "near crosses it without evaluating an instance (off: the thesis' step everywhere)")
       ->group(group);
+  command.add_flag("--storage-tables", tracing.storage_tables,
+                   "Vulkan SDF kernels: the structure's tables in storage buffers instead of texel buffers (the same "
+                   "data and images; which is faster depends on the device)")
+      ->group(group);
   command.add_option("--hit", tracing.hit,
                      "SDF hits: exact (default: the ray's crossing with the triangles listed where it converged) or "
                      "thesis (the converged point, the closest point's normal and uv)")

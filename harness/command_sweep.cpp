@@ -11,7 +11,7 @@ namespace {
 
 struct SweepArgs {
   std::string scene, backend = "sdf-octree", mode = "primary", size = "320x180", hash_cells = "10", depths = "4",
-              min_objects = "1", mesh_cells = "0", over_relax = "1", cell_bound = "0";
+              min_objects = "1", mesh_cells = "0", over_relax = "1", cell_bound = "0", storage_tables = "0";
   unsigned max_depth = 4;
   RunOptions run;
   BackendOptions options;
@@ -37,10 +37,13 @@ void run_sweep(SweepArgs args) {
       for (unsigned min_objects : parse_list<unsigned>(args.min_objects, "--octree-min-objects"))
         for (float mesh_cell : parse_list<float>(args.mesh_cells, "--mesh-cell"))
           for (float omega : parse_list<float>(args.over_relax, "--over-relax"))
-            for (unsigned bound : parse_list<unsigned>(args.cell_bound, "--cell-bound")) {
+            for (unsigned bound : parse_list<unsigned>(args.cell_bound, "--cell-bound"))
+              for (unsigned storage : parse_list<unsigned>(args.storage_tables, "--storage-tables")) {
               BenchConfig c = base;
               if (bound > 1) throw Error("--cell-bound: values must be 0 (off) or 1 (on)");
+              if (storage > 1) throw Error("--storage-tables: values must be 0 (texel buffers) or 1 (storage buffers)");
               c.options.tracing.cell_bound = bound == 1;
+              c.options.tracing.storage_tables = storage == 1;
               if (!(omega >= 1.0f && omega <= 1.95f)) throw Error("--over-relax: values must be in [1, 1.95]");
               c.options.tracing.over_relax = omega;
               c.options.scene_hash.hash_cell = cell;
@@ -75,7 +78,11 @@ void register_sweep_command(CLI::App& app) {
   add_tracing_options(*cmd, args->options.tracing, "SDF tracing");
   cmd->remove_option(cmd->get_option("--over-relax"));  // axes here: lists
   cmd->remove_option(cmd->get_option("--cell-bound"));
+  cmd->remove_option(cmd->get_option("--storage-tables"));
   cmd->add_option("--cell-bound", args->cell_bound, "cell bounds off (0) and/or on (1), comma-separated")
+      ->capture_default_str()->group("SDF tracing");
+  cmd->add_option("--storage-tables", args->storage_tables,
+                  "the structure's tables in texel buffers (0) and/or storage buffers (1), comma-separated")
       ->capture_default_str()->group("SDF tracing");
   cmd->add_option("--over-relax", args->over_relax,
                   "over-relaxation factors, comma-separated (1: the thesis' plain sphere tracing; Keinert et al. 2014)")

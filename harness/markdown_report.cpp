@@ -174,12 +174,13 @@ void backends_table(std::ostringstream& out, const std::string& mode, const std:
 void sweep_table(std::ostringstream& out, const std::vector<Row>& rows) {
   out << "### Sweep: " << rows.front()["scene"] << ", " << rows.front()["backend"] << ", " << rows.front()["mode"] << " ("
       << sizes_of(rows) << ")\n\n"
-      << "| hash cell | octree depth | min objects | mesh cell | over-relax | cell bound | build ms | structure MB | FPS | "
+      << "| hash cell | octree depth | min objects | mesh cell | over-relax | cell bound | tables | build ms | structure MB | FPS | "
          "Mrays/s | steps/ray | instance evals/ray | triangle evals/ray | hit % | id % | PSNR dB |\n"
-         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const Row& r : rows)
     out << "| " << r["hash_cell"] << " | " << r["octree_depth"] << " | " << r["octree_min_objects"] << " | "
         << r["mesh_cell"] << " | " << r["over_relax"] << " | " << (r["cell_bound"] == "1" ? "on" : "off") << " | "
+        << (r["storage_tables"] == "1" ? "storage" : "texel") << " | "
         << fixed(r.number("build_ms"), 0) << " | " << fixed(r.number("structure_bytes") / 1e6, 1)
         << " | " << fps_cell(r) << " | " << fixed(r.number("mrays_per_s"), 3) << " | "
         << (r["steps_per_ray"].empty() ? "–" : fixed(r.number("steps_per_ray"), 1)) << " | "

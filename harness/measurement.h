@@ -25,7 +25,7 @@ struct Measurement {
   std::optional<double> fixed_grid;        // when mesh_cell is 0: 1 = --fixed-grid (no scaling with the triangle count)
   std::string lists;                        // "exact" or "thesis" (--lists)
   std::string hit;                          // "exact" or "thesis" (--hit)
-  std::optional<double> max_steps, hit_epsilon, hit_footprint, over_relax, cell_bound;
+  std::optional<double> max_steps, hit_epsilon, hit_footprint, over_relax, cell_bound, storage_tables;
   // the run's methodology, as requested (--frames, --warmup, --budget-s, --reference, --device, ...)
   unsigned requested_frames = 0, warmup = 0;
   double budget_s = 0;

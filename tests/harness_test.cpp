@@ -70,7 +70,7 @@ TEST(MeasurementColumns, MatchTheDocumentedListAndFieldCount) {
   const std::vector<std::string>& c = measurement_columns();
   for (const char* required : {"scene", "mesh", "triangles", "objects", "backend", "mode", "width", "height", "hash_cell",
                                "octree_depth", "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent",
-                               "hit", "max_steps", "hit_epsilon", "hit_footprint", "over_relax", "cell_bound", "requested_frames", "warmup", "budget_s",
+                               "hit", "max_steps", "hit_epsilon", "hit_footprint", "over_relax", "cell_bound", "storage_tables", "requested_frames", "warmup", "budget_s",
                                "reference", "requested_device", "whitted_passes", "validate", "frames", "ms_median", "ms_min", "ms_max",
                                "fps", "mrays_per_s", "steps_per_ray", "instance_evals_per_ray", "triangle_evals_per_ray",
                                "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray",
@@ -270,12 +270,33 @@ TEST(SweepCommand, OverRelaxationAndCellBoundAreAxes) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const CsvTable t = read_csv(csv);
   ASSERT_EQ(t.rows.size(), 4u);
+  for (const auto& row : t.rows) EXPECT_EQ(row[t.column("storage_tables")], "0");
   std::set<std::pair<std::string, std::string>> seen;
   for (const auto& row : t.rows) {
     seen.emplace(row[t.column("over_relax")], row[t.column("cell_bound")]);
     EXPECT_EQ(row[t.column("agreement")], "ok") << row[t.column("over_relax")] << " " << row[t.column("cell_bound")];
   }
   EXPECT_EQ(seen, (std::set<std::pair<std::string, std::string>>{{"1", "0"}, {"1", "1"}, {"1.5", "0"}, {"1.5", "1"}}));
+}
+
+// Texel against storage buffers for the SDF tables is a sweep axis too (issue 17: a GPU may
+// differ from lavapipe), each row saying which, the same work in both.
+TEST(SweepCommand, StorageTablesAreAnAxis) {
+  test::TempDir dir;
+  const auto csv = dir.path() / "tables.csv";
+  const test::CommandResult r = test::run_sdfbench(
+      "sweep --scene thesis:sphere:4 --backend sdf-hash --size 32x18 --check-size 32x18 --frames 1 --warmup 0 "
+      "--cells-per-extent 8 --storage-tables 0,1 --csv " + csv.string() + " --markdown " + (dir.path() / "t.md").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const CsvTable t = read_csv(csv);
+  ASSERT_EQ(t.rows.size(), 2u);
+  EXPECT_EQ(t.rows[0][t.column("storage_tables")], "0");
+  EXPECT_EQ(t.rows[1][t.column("storage_tables")], "1");
+  EXPECT_EQ(t.rows[0][t.column("steps_per_ray")], t.rows[1][t.column("steps_per_ray")]);
+  for (const auto& row : t.rows) EXPECT_EQ(row[t.column("agreement")], "ok");
+  const test::CommandResult bad = test::run_sdfbench("sweep --scene thesis:sphere:1 --storage-tables 2");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.output.find("--storage-tables"), std::string::npos) << bad.output;
 }
 
 TEST(TableCommand, BadArgumentsAreClearErrors) {

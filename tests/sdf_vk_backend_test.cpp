@@ -136,5 +136,41 @@ TEST(SdfOptions, CellBoundSkipsInstancesAndDrawsTheSame) {
   }
 }
 
+// --storage-tables reads the same bytes through another descriptor type: the same image, ids,
+// depths and work counters, bit for bit, under the validation layer; whitted covers the hit
+// shading's fetches (normals, records) and the secondary rays.
+TEST(SdfOptions, StorageTablesDrawExactlyTheSame) {
+  const Scene scene = make_thesis_scene({"teapot", 30, 4});
+  {  // sdf-hash runs the same kernel on other data (SweepCommand.StorageTablesAreAnAxis covers it)
+    const char* backend = "sdf-octree";
+    BackendOptions storage_options;
+    storage_options.tracing.storage_tables = true;
+    storage_options.validation = true;
+    auto texel = create_renderer(backend, BackendOptions{});
+    auto storage = create_renderer(backend, storage_options);
+    texel->prepare(scene);
+    storage->prepare(scene);
+    for (RenderMode mode : {RenderMode::Shadow, RenderMode::Whitted}) {
+      SCOPED_TRACE(to_string(mode));
+      const FrameRequest request{64, 36, mode, true, std::nullopt, true};
+      const FrameResult a = texel->render(request), b = storage->render(request);
+      EXPECT_EQ(a.images.color, b.images.color);
+      EXPECT_EQ(a.images.instance_id, b.images.instance_id);
+      EXPECT_EQ(a.images.primitive_id, b.images.primitive_id);
+      EXPECT_EQ(a.images.depth, b.images.depth);
+      for (size_t c = 0; c < a.counters.size(); ++c) EXPECT_EQ(a.counters[c], b.counters[c]) << "counter " << c;
+    }
+    EXPECT_EQ(storage->validation_messages(), 0u);
+  }
+  BackendOptions storage;
+  storage.tracing.storage_tables = true;
+  try {
+    create_renderer("sdf-cpu", storage);
+    ADD_FAILURE() << "sdf-cpu accepted --storage-tables";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--storage-tables"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace sdfbench

@@ -10,8 +10,9 @@
 namespace sdfbench {
 
 SdfCpuRenderer::SdfCpuRenderer(const BackendOptions& options) : options_(options), threads_(cpu_thread_count(options)) {
-  if (options.tracing.cell_bound)
-    throw Error("sdf-cpu: --cell-bound is an option of the Vulkan SDF kernels (sdf-hash, sdf-octree)");
+  if (options.tracing.cell_bound || options.tracing.storage_tables)
+    throw Error(std::string("sdf-cpu: ") + (options.tracing.cell_bound ? "--cell-bound" : "--storage-tables") +
+                " is an option of the Vulkan SDF kernels (sdf-hash, sdf-octree)");
   sdf::validate(options.scene_hash);
 }
 

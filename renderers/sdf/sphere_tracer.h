@@ -30,6 +30,9 @@ struct SphereTraceParams {
   // distance from it to any listed surface, and a step from a leaf whose bound is above 0 crosses
   // the leaf and goes the bound beyond, evaluating no instance. Off: the thesis' step everywhere.
   bool cell_bound = false;
+  // --storage-tables (Vulkan SDF kernels): the structure's tables in storage buffers instead of
+  // texel buffers (sdf_scene_distance.glsl); the same data and results, another memory path.
+  bool storage_tables = false;
 };
 
 // `counts` (nullable): adds the steps, instance and triangle evaluations and box tests, counted

@@ -128,9 +128,9 @@ uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistan
 }
 
 vec3 transform_direction(int row0, vec3 v) {
-  return vec3(dot(uintBitsToFloat(texelFetch(instance_records, row0).xyz), v),
-              dot(uintBitsToFloat(texelFetch(instance_records, row0 + 1).xyz), v),
-              dot(uintBitsToFloat(texelFetch(instance_records, row0 + 2).xyz), v));
+  return vec3(dot(uintBitsToFloat(SDF_FETCH(instance_records, row0).xyz), v),
+              dot(uintBitsToFloat(SDF_FETCH(instance_records, row0 + 1).xyz), v),
+              dot(uintBitsToFloat(SDF_FETCH(instance_records, row0 + 2).xyz), v));
 }
 
 // --hit exact: the earliest crossing of the ray with a triangle of `instance` for t in
@@ -143,9 +143,9 @@ bool exact_crossing(Ray ray, float t_lo, float t_hi, uint instance, out float t_
   int record = int(instance) * SDF_INSTANCE_TEXELS;
   vec3 o = transform_point(record + 2, ray.origin);
   vec3 d = transform_direction(record + 2, ray.dir);  // t is the same parameter in both frames
-  int base = int(texelFetch(instance_records, record).w) * SDF_MESH_TEXELS;
-  uvec4 r0 = texelFetch(mesh_records, base);
-  uvec4 r1 = texelFetch(mesh_records, base + 1);
+  int base = int(SDF_FETCH(instance_records, record).w) * SDF_MESH_TEXELS;
+  uvec4 r0 = SDF_FETCH(mesh_records, base);
+  uvec4 r1 = SDF_FETCH(mesh_records, base + 1);
   vec3 origin = uintBitsToFloat(r0.xyz);
   float cell_size = uintBitsToFloat(r0.w);
   uvec3 dims = r1.xyz;
@@ -161,9 +161,9 @@ bool exact_crossing(Ray ray, float t_lo, float t_hi, uint instance, out float t_
     float t_enter = -3.0e38f, t_exit = 3.0e38f;
     clip_to_box(o, d, cell_lo, cell_lo + cell_size, t_enter, t_exit);
     t_exit += 1e-5f * abs(t_exit);  // rounding of the cell walls
-    uvec2 range = texelFetch(grid_cells, int(r1.w + c.x + dims.x * (c.y + dims.y * c.z))).xy;
+    uvec2 range = SDF_FETCH(grid_cells, int(r1.w + c.x + dims.x * (c.y + dims.y * c.z))).xy;
     for (int i = int(range.x); i < int(range.y); ++i) {
-      vec4 second = texelFetch(grid_entries, SDF_ENTRY_TEXELS * i + 1);
+      vec4 second = SDF_FETCH(grid_entries, SDF_ENTRY_TEXELS * i + 1);
       uint k = floatBitsToUint(second.w);
       float tk;
       vec2 uvk;
@@ -262,13 +262,13 @@ bool closest_hit(Ray ray, float tmax, out Hit hit) {
   if (!trace_sdf(ray, tmax, t, instance, triangle, uv)) return false;
   int record = int(instance) * SDF_INSTANCE_TEXELS;
   int n = int(3u * triangle);
-  vec3 normal = interpolate_barycentric(texelFetch(tri_normals, n).xyz, texelFetch(tri_normals, n + 1).xyz,
-                                        texelFetch(tri_normals, n + 2).xyz, uv);
-  uvec4 o0 = texelFetch(instance_records, record + 5);
-  vec3 o1 = uintBitsToFloat(texelFetch(instance_records, record + 6).xyz);
-  vec3 o2 = uintBitsToFloat(texelFetch(instance_records, record + 7).xyz);
-  uint mesh = texelFetch(instance_records, record).w;
-  uint first_triangle = texelFetch(mesh_records, int(mesh) * SDF_MESH_TEXELS + 2).w;
+  vec3 normal = interpolate_barycentric(SDF_FETCH(tri_normals, n).xyz, SDF_FETCH(tri_normals, n + 1).xyz,
+                                        SDF_FETCH(tri_normals, n + 2).xyz, uv);
+  uvec4 o0 = SDF_FETCH(instance_records, record + 5);
+  vec3 o1 = uintBitsToFloat(SDF_FETCH(instance_records, record + 6).xyz);
+  vec3 o2 = uintBitsToFloat(SDF_FETCH(instance_records, record + 7).xyz);
+  uint mesh = SDF_FETCH(instance_records, record).w;
+  uint first_triangle = SDF_FETCH(mesh_records, int(mesh) * SDF_MESH_TEXELS + 2).w;
   hit.t = t;
   hit.instance = instance;
   hit.prim = triangle - first_triangle;
