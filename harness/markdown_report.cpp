@@ -198,10 +198,15 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
   const std::vector<Row> rows = rows_of(csv);
   std::ostringstream out;
   std::map<std::string, std::vector<Row>> by_table, by_mode;
-  std::vector<Row> sweep;
+  std::vector<std::vector<Row>> sweeps;  // one table per scene, backend and mode (merged sweeps), in file order
   for (const Row& r : rows) {
     if (r["table"] == "sweep") {
-      sweep.push_back(r);
+      const auto same = [&](const std::vector<Row>& s) {
+        return s.front()["scene"] == r["scene"] && s.front()["backend"] == r["backend"] && s.front()["mode"] == r["mode"];
+      };
+      const auto it = std::find_if(sweeps.begin(), sweeps.end(), same);
+      if (it == sweeps.end()) sweeps.push_back({r});
+      else it->push_back(r);
       continue;
     }
     if (!r["table"].empty()) by_table[r["table"]].push_back(r);
@@ -214,7 +219,7 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
     backends_table(out, mode, mode_rows);
     driver_bvh_table(out, mode, mode_rows);
   }
-  if (!sweep.empty()) sweep_table(out, sweep);
+  for (const std::vector<Row>& sweep : sweeps) sweep_table(out, sweep);
   if (rows.empty()) out << "(no measurements)\n";
   out << "Flags: ✗ images disagree with the reference (see the CSV's agreement column), † the time budget cut the run "
          "(fewer frames than asked; a single cold frame when only the warm-up fitted), ✂ lavapipe's loop limit cut pixels "

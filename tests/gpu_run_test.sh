@@ -11,7 +11,7 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 script=$root/harness/scripts/gpu_run.sh
 
 "$script" --binary "$binary" --device lavapipe --size 32x18 --compare-size 32x18 --budget-s 1 --frames 1 \
-  --out "$work/out" -- --table 6.3 --meshes sphere --objects 1,10 --check-size 32x18 >"$work/log" 2>&1 ||
+  --storage-scene thesis:sphere:10 --out "$work/out" -- --table 6.3 --meshes sphere --objects 1,10 --check-size 32x18 >"$work/log" 2>&1 ||
   { tail -20 "$work/log"; fail "gpu_run.sh on lavapipe exited $?"; }
 dir=$(echo "$work"/out/llvmpipe-*)
 [[ -d $dir ]] || fail "no folder named after the device under $work/out: $(ls "$work/out")"
@@ -19,6 +19,11 @@ for f in info.txt agreement.txt tables.csv tables.md tables_command.txt; do [[ -
 grep -q "Vulkan devices" "$dir/info.txt" || fail "info.txt lacks sdfbench info's device list"
 [[ $(grep -c '^exit 0$' "$dir/agreement.txt") -eq 10 ]] || fail "expected 10 agreeing compares: $(grep '^exit' "$dir/agreement.txt" | sort | uniq -c)"
 grep -q "vk-rt" "$dir/agreement.txt" || fail "vk-rt (supported on lavapipe) left out of the compares"
+# Texel vs storage buffers: 2 backends x 2 modes x both, every row agreeing.
+[[ -s $dir/storage_vs_texel.md ]] || fail "storage_vs_texel.md missing or empty"
+svt_rows=$(($(wc -l <"$dir/storage_vs_texel.csv") - 1))
+[[ $svt_rows -eq 8 ]] || fail "storage_vs_texel.csv has $svt_rows rows, expected 8"
+[[ $(grep -c ',ok,' "$dir/storage_vs_texel.csv") -eq 8 ]] || fail "not every storage_vs_texel row agrees"
 rows=$(($(wc -l <"$dir/tables.csv") - 1))
 [[ $rows -eq 12 ]] || fail "tables.csv has $rows rows, expected 12 (sphere x 1,10 objects x 6 backends)"
 grep -q -- "--device lavapipe" "$dir/tables_command.txt" || fail "tables_command.txt does not record the command"

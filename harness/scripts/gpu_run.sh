@@ -7,7 +7,12 @@
 #
 #   harness/scripts/gpu_run.sh [--device gpu] [--size 1280x720] [--compare-size 640x360]
 #       [--budget-s 2] [--frames 3] [--minutes 8] [--out results] [--binary build/sdfbench]
-#       [--tables-only] [-- TABLE_FLAGS...]   (e.g. -- --table 6.3 --objects 1,10: passed to `sdfbench table`)
+#       [--storage-scene thesis:bunny:1000] [--tables-only]
+#       [-- TABLE_FLAGS...]   (e.g. -- --table 6.3 --objects 1,10: passed to `sdfbench table`)
+#
+# Between the compares and the tables: the SDF tables in texel buffers against storage buffers
+# (`sweep --storage-tables 0,1`, sdf-octree and sdf-hash, primary and shadow, on --storage-scene
+# at --size), side by side in storage_vs_texel.csv/.md (lavapipe: texel buffers; a GPU may differ).
 #
 # On lavapipe, as a check of the script: --device lavapipe --size 64x36 --compare-size 64x36.
 # --binary defaults to $SDFBENCH, else build/sdfbench, else ./sdfbench (the launcher at the top
@@ -17,23 +22,24 @@
 # the compares already done, to finish), 1 on an error.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=results
+device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=results storage_scene=thesis:bunny:1000
 binary=${SDFBENCH:-build/sdfbench}
 [[ -n ${SDFBENCH:-} || -x $binary || ! -x sdfbench ]] || binary=./sdfbench
 table_flags=() tables_only=0
 die() { echo "gpu_run.sh: error: $*" >&2; exit 1; }
 while [[ $# -gt 0 ]]; do
   case "$1" in
-    --device|--size|--compare-size|--budget-s|--frames|--minutes|--out|--binary)
+    --device|--size|--compare-size|--budget-s|--frames|--minutes|--out|--binary|--storage-scene)
       [[ $# -ge 2 ]] || die "$1 needs a value"
       case "$1" in
         --device) device=$2 ;; --size) size=$2 ;; --compare-size) compare_size=$2 ;; --budget-s) budget=$2 ;;
         --frames) frames=$2 ;; --minutes) minutes=$2 ;; --out) out=$2 ;; --binary) binary=$2 ;;
+        --storage-scene) storage_scene=$2 ;;
       esac
       shift 2 ;;
     --tables-only) tables_only=1; shift ;;
     --) shift; table_flags=("$@"); break ;;
-    -h|--help) sed -n 2,18p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,23p "$0"; exit 0 ;;
     *) die "unknown argument '$1' (see --help)" ;;
   esac
 done
@@ -82,6 +88,23 @@ if [[ $tables_only -eq 0 ]]; then
     for mode in primary shadow; do run_compare "thesis:$mesh:100" "$mode"; done
   done
   for scene in scenes/fig6_1.json scenes/fig6_3.json; do run_compare "$scene" whitted; done
+
+  # Texel against storage buffers for the SDF tables, each pair side by side in one sweep.
+  parts="$dir/storage_vs_texel"
+  mkdir -p "$parts"
+  for backend in sdf-octree sdf-hash; do
+    for mode in primary shadow; do
+      echo "gpu_run: texel vs storage buffers, $backend $mode" >&2
+      status=0
+      cell=10; [[ $backend == sdf-hash ]] && cell=1  # each backend's thesis configuration (tables 6.1, 6.2)
+      "$binary" sweep --scene "$storage_scene" --backend "$backend" --hash-cell "$cell" --mode "$mode" --size "$size" --frames "$frames" \
+        --budget-s "$budget" --storage-tables 0,1 --device "$device" --csv "$parts/${backend}_$mode.csv" \
+        >"$parts/${backend}_$mode.log" 2>&1 || status=$?
+      case $status in 0) ;; 2) disagreed=1 ;; *) die "the storage-vs-texel sweep ($backend, $mode) failed; see $parts/${backend}_$mode.log" ;; esac
+    done
+  done
+  "$binary" merge "$parts"/*.csv --several-runs --csv "$dir/storage_vs_texel.csv" --markdown "$dir/storage_vs_texel.md" >/dev/null ||
+    die "merging $parts/*.csv failed"
 fi
 
 # The tables, under the wall-clock limit (a cut run resumes on the next call).
@@ -97,4 +120,4 @@ case $status in
   *) die "the tables failed (exit $status)" ;;
 esac
 [[ $disagreed -eq 0 ]] || { echo "gpu_run: a compare disagreed; see $agreement" >&2; exit 2; }
-echo "gpu_run: done: $dir (info.txt, agreement.txt, tables.csv, tables.md)" >&2
+echo "gpu_run: done: $dir (info.txt, agreement.txt, storage_vs_texel.csv/.md, tables.csv, tables.md)" >&2
