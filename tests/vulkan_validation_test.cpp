@@ -9,6 +9,16 @@
 namespace sdfbench {
 namespace {
 
+// GPUs with fewer than 64 timestamp bits (issue 17): the elapsed ticks are taken modulo 2^bits,
+// so a counter that wrapped between the two stamps still gives the true interval.
+TEST(VulkanTimestamps, TicksCountOnlyTheValidBits) {
+  EXPECT_EQ(timestamp_ticks(100, 250, 64), 150u);
+  EXPECT_EQ(timestamp_ticks(100, 250, 36), 150u);
+  EXPECT_EQ(timestamp_ticks((uint64_t(1) << 36) - 10, 5, 36), 15u);                    // wrapped
+  EXPECT_EQ(timestamp_ticks(uint64_t(7) << 36 | 100, uint64_t(3) << 36 | 130, 36), 30u);  // junk above the valid bits
+  EXPECT_EQ(timestamp_ticks(~uint64_t(0) - 1, 3, 64), 5u);
+}
+
 TEST(VulkanValidation, TriAabbRendersWithoutValidationMessages) {
   BackendOptions options;
   options.validation = true;

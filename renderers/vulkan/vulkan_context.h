@@ -17,6 +17,13 @@ struct VulkanDeviceInfo {
   std::string api_version;
 };
 
+// Ticks from timestamp `begin` to `end` of a queue with `valid_bits` timestamp bits (36 or 48 on
+// some GPUs, 64 on lavapipe): the difference modulo 2^valid_bits, which also survives a wrap.
+inline uint64_t timestamp_ticks(uint64_t begin, uint64_t end, uint32_t valid_bits) {
+  const uint64_t mask = valid_bits >= 64 ? ~uint64_t(0) : (uint64_t(1) << valid_bits) - 1;
+  return (end - begin) & mask;
+}
+
 class VulkanContext {
  public:
   struct Options {
@@ -43,6 +50,7 @@ class VulkanContext {
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   const VulkanDeviceInfo& info() const { return info_; }
   bool has_timestamps() const { return timestamp_valid_bits_ > 0; }
+  uint32_t timestamp_valid_bits() const { return timestamp_valid_bits_; }
 
   // A memory type with every `required` flag, preferring one that also has `preferred`.
   uint32_t find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags required,

@@ -162,7 +162,8 @@ void VulkanFrameRunner::submit(const std::vector<glm::uvec4>& launches, FrameRes
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
              "vkGetQueryPoolResults");
     result.device_ms = std::max(result.device_ms, 0.0) +
-                       static_cast<double>(stamps[1] - stamps[0]) * context_.properties().limits.timestampPeriod * 1e-6;
+                       static_cast<double>(timestamp_ticks(stamps[0], stamps[1], context_.timestamp_valid_bits())) *
+                       context_.properties().limits.timestampPeriod * 1e-6;
   }
 }
 
