@@ -1,6 +1,8 @@
 // `sdfbench info`: what this machine offers the benchmark.
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include <embree3/rtcore_config.h>
 
@@ -12,6 +14,7 @@
 #include "renderers/vulkan/vulkan_context.h"
 #include "scenes/error.h"
 #include "scenes/mesh.h"
+#include "util/input_file.h"
 
 namespace sdfbench {
 namespace {
@@ -41,6 +44,31 @@ std::string describe_ray_tracing(const VulkanDeviceInfo& device) {
   }
 }
 
+// What differs between devices and matters to the measurements (issue 17): the subgroup width
+// the kernels' lanes run in, the timestamp counter (valid bits, period), the largest tables.
+std::string describe_limits(const VulkanDeviceInfo& device) {
+  try {
+    const VulkanContext context(VulkanContext::Options{std::to_string(device.index), false});
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &subgroup;
+    vkGetPhysicalDeviceProperties2(context.physical_device(), &properties);
+    VkPhysicalDeviceMemoryProperties memory;
+    vkGetPhysicalDeviceMemoryProperties(context.physical_device(), &memory);
+    uint64_t device_local = 0;
+    for (uint32_t i = 0; i < memory.memoryHeapCount; ++i)
+      if (memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) device_local = std::max(device_local, memory.memoryHeaps[i].size);
+    const VkPhysicalDeviceLimits& limits = properties.properties.limits;
+    std::ostringstream out;
+    out << "subgroup " << subgroup.subgroupSize << ", timestamps " << context.timestamp_valid_bits() << " bits x "
+        << limits.timestampPeriod << " ns, texel buffers " << limits.maxTexelBufferElements << " texels, storage buffers "
+        << describe_bytes(limits.maxStorageBufferRange) << ", device-local memory " << describe_bytes(device_local);
+    return out.str();
+  } catch (const Error& e) {
+    return std::string("not read: ") + e.what();
+  }
+}
+
 void print_info() {
   std::cout << "sdfbench " << SDFBENCH_VERSION << " (commit " << git_commit() << ")\n\n";
   std::cout << "CPU:     " << cpu_model() << ", " << hardware_threads() << " hardware threads; CPU backends use "
@@ -59,6 +87,7 @@ void print_info() {
                 << d.driver_info << "), Vulkan " << d.api_version << (is_default ? "  [default]" : "") << "\n";
       std::cout << "     loop cap: " << describe_loop_cap(d) << "\n";
       std::cout << "     vk-rt:    " << describe_ray_tracing(d) << "\n";
+      std::cout << "     limits:   " << describe_limits(d) << "\n";
     }
   } catch (const Error& e) {
     std::cout << "  unavailable: " << e.what() << "\n";
