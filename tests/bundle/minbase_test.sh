@@ -7,7 +7,8 @@
 #      error line.
 #   2. With only libvulkan1 and lavapipe (mesa-vulkan-drivers from bookworm-backports) added:
 #      `info` lists lavapipe, a tiny `table --quick` writes its rows with agreement figures, and
-#      the bundle's gpu_run.sh runs end to end on lavapipe.
+#      harness/scripts/run_bundle_on_device.sh (the prepared GPU-machine command: unpack the
+#      bundle, run its gpu_run.sh) runs end to end on lavapipe.
 # Needs root (debootstrap, chroot, mounts) and Debian's mirror. The root is kept in
 # $MINBASE_WORK (default /tmp/sdfbench-minbase) and reused by a later run; `--fresh` remakes it.
 #   tests/bundle/minbase_test.sh [--fresh]
@@ -102,10 +103,18 @@ head -1 "$csv" | grep -q psnr || fail "the table's CSV has no agreement (psnr) c
 ((rows >= 4)) || fail "table --quick wrote $rows rows"
 say "table --quick: $rows rows in the root's CSV"
 
-in_root "$bundle/harness/scripts/gpu_run.sh" --device lavapipe --size 32x18 --compare-size 32x18 --budget-s 0.2 --frames 1 \
-  --out /tmp/gpu_run -- --table 6.3 --meshes sphere --objects 1 --check-size 32x18 >"$work/gpu_run.log" 2>&1 ||
-  { tail -20 "$work/gpu_run.log"; fail "the bundle's gpu_run.sh on lavapipe"; }
+# The prepared device command as a GPU machine runs it: the repository's script beside dist/.
+rm -rf "$root/opt/repo" && mkdir -p "$root/opt/repo/harness/scripts" "$root/opt/repo/dist"
+cp harness/scripts/run_bundle_on_device.sh "$root/opt/repo/harness/scripts/"
+cp "$archive" "$root/opt/repo/dist/"
+rm -rf "$root/tmp/gpu_run"
+in_root /opt/repo/harness/scripts/run_bundle_on_device.sh --out /tmp/gpu_run -- --device lavapipe --size 32x18 \
+  --compare-size 32x18 --budget-s 0.2 --frames 1 --storage-scene thesis:sphere:10 \
+  -- --table 6.3 --meshes sphere --objects 1 --check-size 32x18 >"$work/gpu_run.log" 2>&1 ||
+  { tail -20 "$work/gpu_run.log"; fail "run_bundle_on_device.sh (the bundle's gpu_run.sh) on lavapipe"; }
+[[ -s $root/tmp/gpu_run/machine.txt ]] || fail "run_bundle_on_device.sh wrote no machine.txt"
 dir=$(echo "$root"/tmp/gpu_run/llvmpipe-*)
 [[ $(grep -c '^exit 0$' "$dir/agreement.txt") -eq 10 ]] || fail "gpu_run.sh: not 10 agreeing compares in $dir/agreement.txt"
-say "gpu_run.sh: $(grep -c '^exit 0$' "$dir/agreement.txt") compares agree, $(($(wc -l <"$dir/tables.csv") - 1)) table rows"
+[[ $(grep -c ',ok,' "$dir/storage_vs_texel.csv") -eq 8 ]] || fail "gpu_run.sh: not 8 agreeing texel/storage rows"
+say "gpu_run.sh: $(grep -c '^exit 0$' "$dir/agreement.txt") compares agree, 8 texel/storage rows, $(($(wc -l <"$dir/tables.csv") - 1)) table rows"
 say "all passed ($(tail -1 "$work/make_bundle.log" | sed 's/^make_bundle.sh: //'))"
