@@ -6,6 +6,7 @@
 #include "harness/system_info.h"
 #include "harness/timing_stats.h"
 #include "scenes/scene_source.h"
+#include "util/cpu_info.h"
 
 namespace sdfbench {
 namespace {

@@ -14,6 +14,7 @@
 #include "renderers/vulkan/vulkan_context.h"
 #include "scenes/error.h"
 #include "scenes/mesh.h"
+#include "util/cpu_info.h"
 #include "util/input_file.h"
 
 namespace sdfbench {

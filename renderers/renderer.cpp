@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <thread>
 
 #include "renderers/bvh/bvh_renderer.h"
 #include "renderers/embree/embree_renderer.h"
@@ -10,6 +9,7 @@
 #include "renderers/sdf_vk/sdf_vk_renderer.h"
 #include "renderers/tri_aabb/tri_aabb_renderer.h"
 #include "renderers/vk_rt/vk_rt_renderer.h"
+#include "util/cpu_info.h"
 #include "scenes/error.h"
 
 namespace sdfbench {
@@ -77,7 +77,7 @@ std::string truncation_error(const std::string& backend, const FrameResult& fram
 unsigned cpu_thread_count(const BackendOptions& options) {
   if (options.threads > 0) return options.threads;
   if (const char* env = std::getenv("LP_NUM_THREADS"); env && std::atoi(env) > 0) return std::atoi(env);
-  return std::max(1u, std::thread::hardware_concurrency());
+  return hardware_threads();
 }
 
 }  // namespace sdfbench

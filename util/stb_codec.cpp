@@ -23,7 +23,8 @@ int length_of(std::span<const std::byte> bytes) {
 
 [[noreturn]] void fail() {
   const char* reason = stbi_failure_reason();
-  throw Error(reason ? std::string("not an image of a known format (") + reason + ")" : "not an image of a known format");
+  const std::string what = "not a readable PNG, JPEG, BMP, TGA or EXR image";
+  throw Error(reason ? what + " (libstb: " + reason + ")" : what);
 }
 
 void append(void* context, void* data, int size) {

@@ -1,6 +1,6 @@
 #include "renderers/embree/embree_renderer.h"
 
-#include "harness/system_info.h"
+#include "util/cpu_info.h"
 #include "renderers/cpu_frame.h"
 #include "scenes/error.h"
 

@@ -2,7 +2,7 @@
 
 #include <iostream>
 
-#include "harness/system_info.h"
+#include "util/cpu_info.h"
 #include "renderers/cpu_frame.h"
 #include "renderers/frame_params.h"
 #include "scenes/error.h"
