@@ -14,7 +14,7 @@
 namespace sdfbench {
 namespace {
 
-constexpr uint32_t kMaxImageSide = 16384;
+constexpr uint32_t kMaxRenderSide = 16384;  // render.width and render.height
 constexpr uint64_t kMaxSceneFileBytes = 32ull << 20;  // a scene of 100 000 instances is ~10 MB
 
 // Looks up a name declared in a section ("meshes", "materials") and says what exists if not.
@@ -50,7 +50,8 @@ Texture load_texture(const JsonField& field, const std::filesystem::path& path, 
   };
   const std::vector<std::byte> bytes = named([&] { return read_input_bytes(path, "image", kMaxImageFileBytes); });
   const ImageHeader header = named([&] { return read_image_header(bytes, name); });
-  if (header.width > 16384 || header.height > 16384) field.fail(name + " must have sides between 1 and 16384");
+  if (header.width > kMaxImageSide || header.height > kMaxImageSide)
+    field.fail(name + " must have sides between 1 and " + std::to_string(kMaxImageSide));
   const uint64_t texels = uint64_t(header.width) * uint64_t(header.height);
   if (scene.texels.size() + texels > kMaxSceneTexels)
     field.fail(name + " is " + std::to_string(header.width) + "x" + std::to_string(header.height) + " texels" +
@@ -269,8 +270,8 @@ Scene build_scene(const nlohmann::ordered_json& doc, const std::filesystem::path
   if (root.has("render")) {
     const JsonField render = root.at("render");
     render.expect_object({"width", "height", "max_depth"});
-    if (render.has("width")) scene.render.width = render.at("width").integer_in(1, kMaxImageSide);
-    if (render.has("height")) scene.render.height = render.at("height").integer_in(1, kMaxImageSide);
+    if (render.has("width")) scene.render.width = render.at("width").integer_in(1, kMaxRenderSide);
+    if (render.has("height")) scene.render.height = render.at("height").integer_in(1, kMaxRenderSide);
     if (render.has("max_depth")) scene.render.max_depth = render.at("max_depth").integer_in(1, 16);
   }
   return scene;

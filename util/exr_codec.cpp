@@ -18,8 +18,6 @@
 namespace sdfbench::codec {
 namespace {
 
-constexpr int kMaxSide = 16384;  // as decode_image: a damaged header allocates nothing larger
-
 class MemoryInput : public Imf::IStream {
  public:
   explicit MemoryInput(std::span<const std::byte> bytes) : Imf::IStream("memory"), bytes_(bytes) {}
@@ -58,8 +56,8 @@ class MemoryOutput : public Imf::OStream {
 void limit_sizes() {
   static std::once_flag once;
   std::call_once(once, [] {
-    Imf::Header::setMaxImageSize(kMaxSide, kMaxSide);
-    Imf::Header::setMaxTileSize(kMaxSide, kMaxSide);
+    Imf::Header::setMaxImageSize(int(kMaxImageSide), int(kMaxImageSide));
+    Imf::Header::setMaxTileSize(int(kMaxImageSide), int(kMaxImageSide));
   });
 }
 

@@ -8,8 +8,6 @@
 namespace sdfbench {
 namespace {
 
-constexpr uint32_t kMaxSide = 16384;  // 1 GiB of RGBA floats: nothing larger is decoded
-
 // Runs a codec call; its failure (Error, an OpenEXR exception, bad_alloc) becomes one Error.
 template <typename F>
 auto guarded(const std::string& what, F&& call) {
@@ -40,9 +38,9 @@ ImageHeader read_image_header(std::span<const std::byte> bytes, const std::strin
 
 DecodedImage decode_image(std::span<const std::byte> bytes, const std::string& name) {
   const ImageHeader header = read_image_header(bytes, name);
-  if (header.width > kMaxSide || header.height > kMaxSide)
+  if (header.width > kMaxImageSide || header.height > kMaxImageSide)
     throw Error("cannot read " + name + ": " + std::to_string(header.width) + "x" + std::to_string(header.height) +
-                " is larger than " + std::to_string(kMaxSide) + " on a side");
+                " is larger than " + std::to_string(kMaxImageSide) + " on a side");
   return guarded("cannot read " + name, [&] { return codec::is_exr(bytes) ? codec::exr_decode(bytes) : codec::stb_decode(bytes); });
 }
 

@@ -20,6 +20,10 @@ enum class ImageFormat { png, jpeg, bmp, tga, hdr, exr };
 std::optional<ImageFormat> image_format_of(const std::filesystem::path& path);
 inline constexpr const char* kImageExtensions = ".png, .exr, .jpg, .hdr, .bmp or .tga";
 
+// The largest side decode_image decodes (16384^2 RGBA floats are 4 GiB; a damaged header allocates
+// nothing larger): OpenEXR is told so before it reads a header.
+inline constexpr uint32_t kMaxImageSide = 16384;
+
 // What a file's header says, read before any pixel is decoded.
 struct ImageHeader {
   uint32_t width = 0, height = 0, channels = 0;
