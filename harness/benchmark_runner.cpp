@@ -5,6 +5,7 @@
 
 #include "harness/system_info.h"
 #include "harness/timing_stats.h"
+#include "renderers/embree/embree_api.h"
 #include "scenes/scene_source.h"
 #include "util/cpu_info.h"
 
@@ -70,6 +71,7 @@ Measurement configuration_fields(const BenchConfig& config, size_t run_index, co
   m.whitted_passes = !config.options.whitted_passes ? "auto" : *config.options.whitted_passes ? "on" : "off";
   m.validate = config.options.validation;
   m.threads = cpu_thread_count(config.options);
+  m.embree = embree::version();  // the reference's library and the bvh backend's builder, also on ERROR rows
   return m;
 }
 

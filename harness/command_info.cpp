@@ -4,10 +4,9 @@
 #include <iostream>
 #include <sstream>
 
-#include <embree3/rtcore_config.h>
-
 #include "harness/commands.h"
 #include "harness/system_info.h"
+#include "renderers/embree/embree_api.h"
 #include "renderers/renderer.h"
 #include "renderers/vulkan/loop_cap_probe.h"
 #include "renderers/vulkan/ray_tracing_support.h"
@@ -74,7 +73,7 @@ void print_info() {
   std::cout << "sdfbench " << SDFBENCH_VERSION << " (commit " << git_commit() << ")\n\n";
   std::cout << "CPU:     " << cpu_model() << ", " << hardware_threads() << " hardware threads; CPU backends use "
             << cpu_thread_count(BackendOptions{}) << " threads\n";
-  std::cout << "Embree:  " << RTC_VERSION_MAJOR << "." << RTC_VERSION_MINOR << "." << RTC_VERSION_PATCH << "\n\n";
+  std::cout << "Embree:  " << embree::version() << " (the embree backend and the bvh backend's builder)\n\n";
 
   std::cout << "Vulkan devices (--device):\n";
   try {

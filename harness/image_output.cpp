@@ -25,7 +25,9 @@ ImageFormat format_of(const fs::path& path, const std::string& what) {
 // Encoded in memory, then written with write_file_atomically: the image goes through the one
 // safe way to write an output.
 void write_atomically(const fs::path& path, const FloatImage& image) {
-  const std::vector<unsigned char> encoded = encode_image(image, format_of(path, "cannot write"), "'" + path.string() + "'");
+  // (appended, not "'" + path.string() + "'": GCC 12 gives a false -Wrestrict there, GCC bug 105651)
+  const std::string quoted = std::string("'").append(path.string()).append("'");
+  const std::vector<unsigned char> encoded = encode_image(image, format_of(path, "cannot write"), quoted);
   write_file_atomically(path, std::as_bytes(std::span(encoded.data(), encoded.size())));
 }
 

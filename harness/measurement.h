@@ -47,6 +47,7 @@ struct Measurement {
   bool budget_cut = false;
   // where
   std::string device, driver, cpu;
+  std::string embree;  // Embree's version ("3.13.5", "4.3.3"): the reference backend and the bvh builder
   unsigned threads = 0;
   std::string commit;
 };

@@ -5,13 +5,13 @@
 #include <limits>
 #include <set>
 
-#include <embree3/rtcore.h>
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
 #include "harness/image_agreement.h"
 #include "renderers/bvh/bvh_builder.h"
 #include "renderers/bvh/bvh_renderer.h"
+#include "renderers/embree/embree_api.h"
 #include "renderers/shading/gpu_types.h"
 #include "scenes/mesh.h"
 #include "scenes/thesis_layout.h"

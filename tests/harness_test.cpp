@@ -75,7 +75,7 @@ TEST(MeasurementColumns, MatchTheDocumentedListAndFieldCount) {
                                "fps", "mrays_per_s", "steps_per_ray", "instance_evals_per_ray", "triangle_evals_per_ray",
                                "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray",
                                "build_ms", "structure_bytes", "hit_agreement", "id_agreement", "psnr", "budget_cut",
-                               "device", "driver", "cpu", "threads", "commit"})
+                               "device", "driver", "embree", "cpu", "threads", "commit"})
     EXPECT_NE(std::find(c.begin(), c.end(), required), c.end()) << required;
   EXPECT_EQ(to_csv_fields(Measurement{}).size(), c.size());
   EXPECT_EQ(std::set<std::string>(c.begin(), c.end()).size(), c.size()) << "duplicate column";

@@ -4,7 +4,15 @@
 # the shared libraries it needs beyond glibc, the scene data, gpu_run.sh and a launcher that
 # sets the library path, as one .tar.gz.
 #
-#   harness/scripts/make_bundle.sh [--build-dir build] [--out dist] [--max-mib 60]
+#   harness/scripts/make_bundle.sh [--build-dir build] [--out dist] [--max-mib 60] [--max-glibc 2.36]
+#                                  [--bookworm-root DIR]
+#
+# The bundle carries everything but glibc, so it starts where the glibc is at least as new as the
+# build host's (its floor, printed and written into README.txt). --max-glibc (default 2.36, Debian
+# 12's; Ubuntu 24.04 has 2.39) refuses a bundle with a higher floor: on a newer host (Debian 13:
+# 2.41) build it with --bookworm-root DIR, which makes a Debian 12 root at DIR (debootstrap
+# --variant=minbase, kept for the next call; needs root), installs the dependencies there
+# (install_deps.sh) and builds the bundle inside it from a copy of this checkout.
 #
 # Layout of sdfbench-<version>-<commit>-linux-x86_64/:
 #   sdfbench                   the launcher (run this)
@@ -18,22 +26,51 @@
 #   harness/scripts/gpu_run.sh the prepared GPU run
 #   README.txt, licenses/      how to run it; the copyright files of every library carried
 # Prints the archive, its size and the newest glibc symbol version it needs; exit 1 when it is
-# larger than --max-mib (compressed) or when a library cannot be found.
+# larger than --max-mib (compressed), needs a newer glibc than --max-glibc, or when a library cannot
+# be found.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-build_dir=build out=dist max_mib=60
+build_dir=build out=dist max_mib=60 max_glibc=2.36 bookworm_root=""
 die() { echo "make_bundle.sh: error: $*" >&2; exit 1; }
 while [[ $# -gt 0 ]]; do
   case "$1" in
-    --build-dir|--out|--max-mib)
+    --build-dir|--out|--max-mib|--max-glibc|--bookworm-root)
       [[ $# -ge 2 ]] || die "$1 needs a value"
-      case "$1" in --build-dir) build_dir=$2 ;; --out) out=$2 ;; --max-mib) max_mib=$2 ;; esac
+      case "$1" in
+        --build-dir) build_dir=$2 ;; --out) out=$2 ;; --max-mib) max_mib=$2 ;; --max-glibc) max_glibc=$2 ;;
+        --bookworm-root) bookworm_root=$2 ;;
+      esac
       shift 2 ;;
-    -h|--help) sed -n 2,22p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,32p "$0"; exit 0 ;;
     *) die "unknown argument '$1' (see --help)" ;;
   esac
 done
 [[ $max_mib =~ ^[0-9]+$ ]] || die "--max-mib takes a whole number, not '$max_mib'"
+[[ $max_glibc =~ ^2\.[0-9]+$ ]] || die "--max-glibc takes a glibc version such as 2.36, not '$max_glibc'"
+
+if [[ -n $bookworm_root ]]; then
+  [[ $(id -u) -eq 0 ]] || die "--bookworm-root needs root (debootstrap, chroot and mounts)"
+  bookworm_root=$(realpath -m "$bookworm_root")
+  . harness/scripts/debian_root.sh
+  trap 'debian_root_unmount "$bookworm_root"' EXIT
+  echo "make_bundle.sh: building in a Debian 12 root at $bookworm_root (debootstrap, the dependencies and the build" \
+    "take minutes the first time; the root is kept)"
+  debian_root_make "$bookworm_root" bookworm "$bookworm_root.debootstrap.log" ||
+    die "debootstrap bookworm failed (log: $bookworm_root.debootstrap.log)"
+  debian_root_mount "$bookworm_root"
+  debian_root_copy_checkout "$bookworm_root" /opt/sdfbench-src
+  rm -rf "$bookworm_root/opt/sdfbench-dist"
+  debian_root_run "$bookworm_root" bash -c "cd /opt/sdfbench-src && harness/scripts/install_deps.sh >/opt/install_deps.log 2>&1" ||
+    { tail -20 "$bookworm_root/opt/install_deps.log" >&2; die "install_deps.sh failed in the Debian 12 root"; }
+  debian_root_run "$bookworm_root" /opt/sdfbench-src/harness/scripts/make_bundle.sh --out /opt/sdfbench-dist \
+    --max-mib "$max_mib" --max-glibc "$max_glibc" | tail -1
+  mkdir -p "$out"
+  built=$(ls "$bookworm_root"/opt/sdfbench-dist/sdfbench-*.tar.gz)
+  cp "$built" "$out/$(basename "$built").tmp"
+  mv "$out/$(basename "$built").tmp" "$out/$(basename "$built")"
+  echo "make_bundle.sh: $out/$(basename "$built") (built in the Debian 12 root)"
+  exit 0
+fi
 
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build_dir" --target sdfbench -j"$(nproc)"
@@ -73,6 +110,10 @@ cp harness/bundle/launcher.sh "$root/sdfbench"
 chmod +x "$root/sdfbench"
 glibc=$( { objdump -T "$root/bin/sdfbench"; for l in "$root"/lib/*.so* "$root"/lib/fallback/*.so*; do objdump -T "$l"; done; } |
   grep -o 'GLIBC_[0-9.]*' | sort -uV | tail -1)
+if [[ $(printf '%s\n' "${glibc#GLIBC_}" "$max_glibc" | sort -V | tail -1) != "$max_glibc" ]]; then
+  die "the bundle would need glibc >= ${glibc#GLIBC_} (this host's), newer than --max-glibc $max_glibc (default: Debian" \
+    "12's), so it would not start on older systems and GPU machines: build it with --bookworm-root DIR, or raise --max-glibc"
+fi
 sed -e "s/@NAME@/$name/g" -e "s/@GLIBC@/${glibc#GLIBC_}/g" harness/bundle/README.txt > "$root/README.txt"
 
 # The launcher must start the binary from the bundle alone (no build tree, no data dir).

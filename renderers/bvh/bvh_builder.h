@@ -8,9 +8,9 @@
 #include <functional>
 #include <vector>
 
-#include <embree3/rtcore.h>
 #include <glm/glm.hpp>
 
+#include "renderers/embree/embree_api.h"
 #include "scenes/aabb.h"
 #include "scenes/mesh.h"
 

@@ -1,8 +1,7 @@
 #pragma once
 #include <memory>
 
-#include <embree3/rtcore.h>
-
+#include "renderers/embree/embree_api.h"
 #include "renderers/renderer.h"
 #include "renderers/vulkan/gpu_buffer.h"
 #include "renderers/vulkan/triangle_buffers.h"

@@ -20,8 +20,7 @@ EmbreeRenderer::~EmbreeRenderer() {
 std::string EmbreeRenderer::device_name() const { return cpu_model() + " (" + std::to_string(threads_) + " threads)"; }
 
 std::string EmbreeRenderer::driver_name() const {
-  return "Embree " + std::to_string(RTC_VERSION_MAJOR) + "." + std::to_string(RTC_VERSION_MINOR) + "." +
-         std::to_string(RTC_VERSION_PATCH);
+  return "Embree " + embree::version();
 }
 
 void EmbreeRenderer::check_device(const char* what) const {
@@ -76,8 +75,6 @@ void EmbreeRenderer::prepare(const Scene& scene) {
 }
 
 bool EmbreeRenderer::closest_hit(shading::Ray ray, float tmax, shading::Hit& hit, shading::PixelCounts*) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   RTCRayHit rh{};
   rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;
   rh.ray.dir_x = ray.dir.x, rh.ray.dir_y = ray.dir.y, rh.ray.dir_z = ray.dir.z;
@@ -86,7 +83,7 @@ bool EmbreeRenderer::closest_hit(shading::Ray ray, float tmax, shading::Hit& hit
   rh.ray.mask = 0xffffffffu;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(top_, &context, &rh);
+  embree::intersect1(top_, rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   const unsigned index = rh.hit.instID[0];
   const Instance& instance = scene_->instances[index];
@@ -104,15 +101,13 @@ bool EmbreeRenderer::closest_hit(shading::Ray ray, float tmax, shading::Hit& hit
 }
 
 bool EmbreeRenderer::any_hit(shading::Ray ray, float tmax, shading::PixelCounts*) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   RTCRay r{};
   r.org_x = ray.origin.x, r.org_y = ray.origin.y, r.org_z = ray.origin.z;
   r.dir_x = ray.dir.x, r.dir_y = ray.dir.y, r.dir_z = ray.dir.z;
   r.tnear = 0.0f;
   r.tfar = tmax;
   r.mask = 0xffffffffu;
-  rtcOccluded1(top_, &context, &r);
+  embree::occluded1(top_, r);
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on occlusion
 }
 

@@ -2,9 +2,9 @@
 #include <memory>
 #include <vector>
 
-#include <embree3/rtcore.h>
 #include <glm/glm.hpp>
 
+#include "renderers/embree/embree_api.h"
 #include "renderers/renderer.h"
 #include "renderers/shading/gpu_types.h"
 

@@ -15,7 +15,7 @@ namespace {
 
 using namespace sdfbench;
 
-constexpr const char* kScene = "thesis:bunny:1000";
+const std::string kScene = "thesis:bunny:1000";  // a string: scene(kScene) binds no temporary
 constexpr size_t kQueries = 4096;  // points per iteration: enough to average over cells/leaves
 
 // Scenes and structures are built once and shared by the benchmarks that only read them
@@ -126,8 +126,8 @@ void BM_SceneDistanceQuery(benchmark::State& state, float cell, uint32_t depth) 
   uint64_t evaluations = 0;
   for (auto _ : state)
     for (const glm::vec3& p : points) {
-      const sdf::SceneDistance d = sdf::scene_distance(sdf, s, p);
-      benchmark::DoNotOptimize(d.distance);
+      sdf::SceneDistance d = sdf::scene_distance(sdf, s, p);
+      benchmark::DoNotOptimize(d.distance);  // a mutable lvalue: the const& overload is deprecated
       evaluations += d.evaluations;
     }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * points.size()));

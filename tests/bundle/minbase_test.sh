@@ -15,48 +15,34 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 work=${MINBASE_WORK:-/tmp/sdfbench-minbase}
-mirror=http://deb.debian.org/debian
+mirror=${SDFBENCH_DEBIAN_MIRROR:-http://deb.debian.org/debian}
 root=$work/root
 fail() { echo "minbase_test: FAIL: $*" >&2; exit 1; }
 say() { echo "minbase_test: $*"; }
 [[ $(id -u) -eq 0 ]] || fail "needs root (debootstrap, chroot and mounts)"
 
-# Everything mounted inside the root (also by an earlier run that was killed), deepest first:
-# unmounted before the root is removed, so that rm never walks into the host's /dev.
-unmount_root() {
-  local m
-  for m in $(awk -v r="$root/" 'index($2, r) == 1 {print $2}' /proc/mounts | sort -r); do umount -l "$m" || true; done
-}
-remove_root() { unmount_root; rm -rf --one-file-system "$root"; }
-trap unmount_root EXIT
-[[ ${1:-} == --fresh ]] && remove_root
-
-if [[ ! -f $root/.minbase-ready ]]; then
-  command -v debootstrap >/dev/null || {
-    say "installing debootstrap"
-    apt-get install -y -qq --no-install-recommends debootstrap >/dev/null || { apt-get update -qq && apt-get install -y -qq --no-install-recommends debootstrap >/dev/null; }
-  }
-  remove_root
-  mkdir -p "$work"
-  say "debootstrap --variant=minbase bookworm (a few minutes)"
-  debootstrap --variant=minbase bookworm "$root" "$mirror" >"$work/debootstrap.log" 2>&1 ||
-    { tail -20 "$work/debootstrap.log"; fail "debootstrap failed (log: $work/debootstrap.log)"; }
-  touch "$root/.minbase-ready"
-fi
-unmount_root
-mount -t proc proc "$root/proc"
-mount -t sysfs sys "$root/sys"
-mount --bind /dev "$root/dev"
-cp /etc/resolv.conf "$root/etc/resolv.conf"
-in_root() { chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root "$@"; }
+. harness/scripts/debian_root.sh
+trap 'debian_root_unmount "$root"' EXIT
+[[ ${1:-} == --fresh ]] && debian_root_remove "$root"
+say "debootstrap --variant=minbase bookworm (a few minutes; reused when $root has it)"
+debian_root_make "$root" bookworm "$work/debootstrap.log" || fail "debootstrap failed (log: $work/debootstrap.log)"
+debian_root_mount "$root"
+in_root() { debian_root_run "$root" "$@"; }
 no_dev_packages() {
   local dev
   dev=$(in_root dpkg-query -W -f '${Package}\n' | grep -E -- '-dev(:|$)' || true)
   [[ -z $dev ]] || fail "the root has -dev packages: $dev"
 }
 
-say "making the bundle"
-harness/scripts/make_bundle.sh --out "$work/dist" | tee "$work/make_bundle.log" | tail -1
+# On a host newer than Debian 12 (Debian 13: glibc 2.41) the bundle is built in a Debian 12 root of
+# its own, as it is for GPU machines, so that it starts in this Debian 12 root.
+bundle_flags=()
+host_glibc=$(getconf GNU_LIBC_VERSION | awk '{print $2}')
+if [[ $(printf '%s\n' "$host_glibc" 2.36 | sort -V | tail -1) != 2.36 ]]; then
+  bundle_flags=(--bookworm-root "$work/build-root")
+fi
+say "making the bundle${bundle_flags[*]:+ (host glibc $host_glibc: ${bundle_flags[*]})}"
+harness/scripts/make_bundle.sh --out "$work/dist" "${bundle_flags[@]}" | tee "$work/make_bundle.log" | tail -1
 archive=$(ls -t "$work"/dist/sdfbench-*.tar.gz | head -1)
 name=$(basename "$archive" .tar.gz)
 rm -rf "$root/opt/sdfbench" && mkdir -p "$root/opt/sdfbench"

@@ -1,0 +1,47 @@
+#pragma once
+// Embree 3 and Embree 4 from one source tree (Debian 12 ships 3.13, Debian 13 ships 4.3). CMake
+// takes Embree 4 when it is installed and 3 otherwise, and says which in SDFBENCH_EMBREE_MAJOR so
+// that the headers match the library that is linked. The two differ, for what sdfbench uses, only
+// in the header folder and in the single-ray queries: Embree 4 dropped RTCIntersectContext and
+// takes the ray second, with optional arguments that sdfbench leaves at their defaults.
+#include <string>
+
+#if SDFBENCH_EMBREE_MAJOR == 4
+#include <embree4/rtcore.h>
+#elif SDFBENCH_EMBREE_MAJOR == 3
+#include <embree3/rtcore.h>
+#else
+#error "SDFBENCH_EMBREE_MAJOR must be 3 or 4 (set by CMakeLists.txt from the Embree package it found)"
+#endif
+static_assert(RTC_VERSION_MAJOR == SDFBENCH_EMBREE_MAJOR, "Embree's headers are not the version CMake found");
+
+namespace sdfbench::embree {
+
+// The closest hit along rh.ray (rh.hit.geomID stays RTC_INVALID_GEOMETRY_ID on a miss).
+inline void intersect1(RTCScene scene, RTCRayHit& rh) {
+#if RTC_VERSION_MAJOR >= 4
+  rtcIntersect1(scene, &rh);
+#else
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcIntersect1(scene, &context, &rh);
+#endif
+}
+
+// Any hit along ray (Embree sets ray.tfar to -inf when there is one).
+inline void occluded1(RTCScene scene, RTCRay& ray) {
+#if RTC_VERSION_MAJOR >= 4
+  rtcOccluded1(scene, &ray);
+#else
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcOccluded1(scene, &context, &ray);
+#endif
+}
+
+// "3.13.5", "4.3.3": the version of the headers, which CMake matched to the linked library.
+inline std::string version() {
+  return std::to_string(RTC_VERSION_MAJOR) + "." + std::to_string(RTC_VERSION_MINOR) + "." + std::to_string(RTC_VERSION_PATCH);
+}
+
+}  // namespace sdfbench::embree
