@@ -111,7 +111,7 @@ chmod +x "$root/sdfbench"
 glibc=$( { objdump -T "$root/bin/sdfbench"; for l in "$root"/lib/*.so* "$root"/lib/fallback/*.so*; do objdump -T "$l"; done; } |
   grep -o 'GLIBC_[0-9.]*' | sort -uV | tail -1)
 if [[ $(printf '%s\n' "${glibc#GLIBC_}" "$max_glibc" | sort -V | tail -1) != "$max_glibc" ]]; then
-  die "the bundle would need glibc >= ${glibc#GLIBC_} (this host's), newer than --max-glibc $max_glibc (default: Debian" \
+  die "the bundle would need glibc >= ${glibc#GLIBC_} (the symbols it links on this host), newer than --max-glibc $max_glibc (default: Debian" \
     "12's), so it would not start on older systems and GPU machines: build it with --bookworm-root DIR, or raise --max-glibc"
 fi
 sed -e "s/@NAME@/$name/g" -e "s/@GLIBC@/${glibc#GLIBC_}/g" harness/bundle/README.txt > "$root/README.txt"
