@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -92,31 +93,19 @@ Shard parse_shard(const std::string& text) {
 
 bool in_shard(size_t i, const Shard& shard) { return i % shard.count == shard.index - 1; }
 
-std::vector<std::string> split_list(const std::string& text, const std::string& option) {
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) items.push_back(item);
-  if (items.empty()) throw Error(option + " '" + text + "': expected a comma-separated list");
-  return items;
-}
-
-template <class T>
-std::vector<T> parse_list(const std::string& text, const std::string& option) {
-  std::vector<T> values;
-  for (const std::string& item : split_list(text, option)) {
-    T v{};
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
-    if (ec != std::errc() || end != item.data() + item.size() || v < T{0})
-      throw Error(option + " '" + text + "': '" + item + "' is not a non-negative number");
-    values.push_back(v);
+void check_plan_size(const std::vector<std::pair<std::string, size_t>>& axes) {
+  size_t count = 1;
+  bool over = false;  // past what a size_t holds
+  std::string product;
+  for (const auto& [name, length] : axes) {
+    over = over || __builtin_mul_overflow(count, length, &count);
+    product += (product.empty() ? "" : " x ") + name + " " + std::to_string(length);
   }
-  return values;
+  if (over || count > kMaxPlanConfigurations)
+    throw Error("the plan lists " + (over ? "more than " + std::to_string(SIZE_MAX) : std::to_string(count)) +
+                " configurations (" + product + "), more than the limit of " + std::to_string(kMaxPlanConfigurations) +
+                " per run: split it into several runs");
 }
-template std::vector<float> parse_list<float>(const std::string&, const std::string&);
-template std::vector<unsigned> parse_list<unsigned>(const std::string&, const std::string&);
-template std::vector<size_t> parse_list<size_t>(const std::string&, const std::string&);
 
 std::string plan_run_id(const std::vector<BenchConfig>& plan, const BenchSettings& settings) {
   uint64_t hash = fnv1a64(std::to_string(plan.size()));
@@ -140,6 +129,16 @@ CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner,
       if (table.columns != measurement_columns())
         throw Error("--resume: '" + options.csv + "' has other columns than this sdfbench writes; use a new --csv file");
       done = resumed_keys(table, plan, runner.settings(), run_id);
+      // A configuration that failed (an ERROR row: a cap, a lost device, a killed job) is run
+      // again: its row is dropped here and written anew.
+      size_t failed = 0;
+      for (size_t r = table.rows.size(); r-- > 0;)
+        if (table.rows[r][table.column("agreement")].rfind("ERROR", 0) == 0) {
+          done.erase(configuration_key(table.rows[r], table.columns));
+          table.rows.erase(table.rows.begin() + static_cast<std::ptrdiff_t>(r));
+          ++failed;
+        }
+      if (failed) std::cerr << "resume: retrying " << failed << " configuration(s) that failed before (ERROR rows)\n";
     } else if (!options.resume && std::filesystem::exists(options.csv)) {
       std::cerr << "note: overwriting '" << options.csv << "' (--resume continues a file instead)\n";
     }
@@ -154,6 +153,8 @@ CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner,
   }
   if (resumed) std::cerr << "resume: " << resumed << " configuration(s) already in '" << options.csv << "'\n";
 
+  // A shard with nothing (left) to run still writes its file, so a merge of every shard's CSV works.
+  if (!options.csv.empty() && todo.empty()) write_csv(options.csv, table);
   const Clock::time_point start = Clock::now();
   for (size_t k = 0; k < todo.size(); ++k) {
     const BenchConfig& config = plan[todo[k]];

@@ -26,16 +26,18 @@ struct PlanOptions {
   Shard shard;
 };
 
+// The most configurations one table or sweep may list: at a second each, more than a day. The
+// count is known before anything is built, so a larger product of lists is refused at once.
+constexpr size_t kMaxPlanConfigurations = 100000;
+// Throws Error with the count, each axis ("--hash-cell 5000") and the limit when the product of
+// the axes' lengths passes kMaxPlanConfigurations (computed without overflow).
+void check_plan_size(const std::vector<std::pair<std::string, size_t>>& axes);
+
 // The run's id (CSV column run_id): a digest of every configuration's key in the whole plan,
 // so all shards of one run share it and a run with any other setting or list has another.
 std::string plan_run_id(const std::vector<BenchConfig>& plan, const BenchSettings& settings);
 
 // Returns the CSV table of this run's rows (those resumed from the file included).
 CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner, const PlanOptions& options);
-
-// Comma-separated list helpers shared by table and sweep.
-std::vector<std::string> split_list(const std::string& text, const std::string& option);
-template <class T>
-std::vector<T> parse_list(const std::string& text, const std::string& option);
 
 }  // namespace sdfbench

@@ -61,6 +61,9 @@ Measurement configuration_fields(const BenchConfig& config, size_t run_index, co
     m.over_relax = t.over_relax;
     m.cell_bound = t.cell_bound ? 1.0 : 0.0;
     m.storage_tables = t.storage_tables ? 1.0 : 0.0;
+    m.max_structure_mb = static_cast<double>(config.options.mesh_grid.max_bytes >> 20);
+    m.cache = config.options.cache.path;
+    if (!m.cache.empty()) m.on_bad_cache = config.options.cache.on_bad == sdf::BadCachePolicy::Rebuild ? "rebuild" : "refuse";
   }
   m.requested_frames = settings.frames;
   m.warmup = settings.warmup;

@@ -9,6 +9,7 @@
 
 #include "harness/cli_common.h"
 #include "harness/commands.h"
+#include "harness/output_paths.h"
 #include "renderers/sdf/scene_hash.h"
 #include "renderers/sdf/sdf_cache.h"
 #include "scenes/error.h"
@@ -56,6 +57,7 @@ void run_build(const BuildArgs& args) {
   sdf::validate(args.options.scene_hash);
   if (!args.cache.empty()) check_output_path(args.cache, "--cache");
   const Scene scene = load_scene(args.scene);
+  check_distinct_outputs({{"--cache", args.cache}}, scene_inputs(scene));
   sdf::scene_hash_dims(scene, args.options.scene_hash);  // refused before the mesh grids are built
   std::cout << "scene       " << describe_scene(scene) << "\n" << std::flush;
   sdf::SceneSdf sdf;

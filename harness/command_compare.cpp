@@ -1,4 +1,5 @@
 // `sdfbench compare`: render one scene with several backends and check their images agree.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -8,6 +9,8 @@
 #include "harness/commands.h"
 #include "harness/image_agreement.h"
 #include "harness/image_output.h"
+#include "harness/list_option.h"
+#include "harness/output_paths.h"
 #include "scenes/error.h"
 #include "scenes/scene_source.h"
 
@@ -20,15 +23,6 @@ struct CompareArgs {
   AgreementThresholds thresholds;
   BackendOptions backend_options;
 };
-
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) items.push_back(item);
-  return items;
-}
 
 FrameImages render_once(const std::string& backend, const BackendOptions& options, const Scene& scene,
                         const FrameRequest& request, std::string& device) {
@@ -44,14 +38,23 @@ FrameImages render_once(const std::string& backend, const BackendOptions& option
 
 void run_compare(const CompareArgs& args) {
   const RenderMode mode = parse_mode_option(args.mode);
-  std::vector<std::string> backends = split_list(args.backends);
-  if (backends.empty()) throw Error("--backends: give at least one backend, e.g. embree,tri-aabb");
+  const std::vector<std::string> backends = split_list(args.backends, "--backends");
   for (const std::string& b : backends) check_backend_name(b);
   check_backend_name(args.reference);
+  if (std::none_of(backends.begin(), backends.end(), [&](const std::string& b) { return b != args.reference; }))
+    throw Error("--backends '" + args.backends + "' lists only the reference (" + args.reference +
+                "): nothing to compare; add another backend, e.g. " + args.reference + ",tri-aabb");
   if (!args.out_dir.empty() && !std::filesystem::is_directory(args.out_dir))
     throw Error("--out-dir '" + args.out_dir + "' is not a directory");
 
   const Scene scene = load_scene(args.scene);
+  if (!args.out_dir.empty()) {  // DIR/<backend>.png may be one of the scene's textures
+    std::vector<NamedPath> images;
+    images.push_back({"--out-dir image", std::filesystem::path(args.out_dir) / (args.reference + ".png")});
+    for (const std::string& b : backends)
+      if (b != args.reference) images.push_back({"--out-dir image", std::filesystem::path(args.out_dir) / (b + ".png")});
+    check_distinct_outputs(images, scene_inputs(scene));
+  }
   const ImageSize size = frame_size(args.size, scene);
   const FrameRequest request{size.width, size.height, mode, true, args.max_depth};
   std::cout << "scene      " << describe_scene(scene) << "\n"

@@ -7,6 +7,7 @@
 #include "harness/commands.h"
 #include "harness/csv.h"
 #include "harness/measurement.h"
+#include "harness/output_paths.h"
 #include "harness/run_options.h"
 #include "scenes/error.h"
 #include "util/atomic_file.h"
@@ -35,6 +36,9 @@ void check_same_run(const CsvTable& t, const CsvTable& first) {
 void run_merge(const MergeArgs& args) {
   check_output_path(args.csv, "--csv");
   if (!args.markdown.empty()) check_output_path(args.markdown, "--markdown");
+  std::vector<NamedPath> inputs;
+  for (const std::string& path : args.inputs) inputs.push_back({"the input", path});
+  check_distinct_outputs({{"--csv", args.csv}, {"--markdown", args.markdown}}, inputs);
   const OutputLock lock(args.csv, "--csv");  // not while a table or sweep is writing it
   CsvTable merged, first;
   std::vector<std::pair<size_t, std::vector<std::string>>> rows;  // run_index (+ file rank), fields

@@ -6,6 +6,7 @@
 #include "harness/cli_common.h"
 #include "harness/commands.h"
 #include "harness/image_output.h"
+#include "harness/output_paths.h"
 #include "harness/structure_view.h"
 #include "harness/timing_stats.h"
 #include "scenes/error.h"
@@ -79,6 +80,9 @@ void run_render(const RenderArgs& args) {
       throw Error("--heatmap maps sphere-tracing steps: " + args.backend + " takes none (use an sdf-* backend)");
   }
   const Scene scene = load_scene(args.scene);
+  check_distinct_outputs({{"--out", args.out}, {"--aov", args.aov}, {"--heatmap", args.heatmap},
+                          {"--cache", args.backend_options.cache.path}},
+                         scene_inputs(scene));
   const ImageSize size = frame_size(args.size, scene);
 
   std::unique_ptr<Renderer> renderer = create_renderer(args.backend, args.backend_options);

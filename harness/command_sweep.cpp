@@ -3,8 +3,10 @@
 
 #include "harness/cli_common.h"
 #include "harness/commands.h"
+#include "harness/list_option.h"
 #include "harness/run_options.h"
 #include "scenes/error.h"
+#include "scenes/scene_source.h"
 
 namespace sdfbench {
 namespace {
@@ -31,30 +33,45 @@ void run_sweep(SweepArgs args) {
   base.max_depth = args.max_depth;
   base.options = args.options;
   base.options.hash_cell_given = true;  // the sweep's hash cell is what the row says, also for sdf-hash
+  // Every axis parsed and checked once, and the product refused before anything is built.
+  const std::vector<float> cells = parse_list<float>(args.hash_cells, "--hash-cell");
+  const std::vector<unsigned> depths = parse_list<unsigned>(args.depths, "--octree-depth");
+  const std::vector<unsigned> min_objects = parse_list<unsigned>(args.min_objects, "--octree-min-objects");
+  const std::vector<float> mesh_cells = parse_list<float>(args.mesh_cells, "--mesh-cell");
+  const std::vector<float> omegas = parse_list<float>(args.over_relax, "--over-relax");
+  const std::vector<unsigned> bounds = parse_list<unsigned>(args.cell_bound, "--cell-bound");
+  const std::vector<unsigned> storages = parse_list<unsigned>(args.storage_tables, "--storage-tables");
+  for (unsigned n : min_objects)
+    if (n < 1) throw Error("--octree-min-objects: values must be >= 1");
+  for (float omega : omegas)
+    if (!(omega >= 1.0f && omega <= 1.95f)) throw Error("--over-relax: values must be in [1, 1.95]");
+  for (unsigned bound : bounds)
+    if (bound > 1) throw Error("--cell-bound: values must be 0 (off) or 1 (on)");
+  for (unsigned storage : storages)
+    if (storage > 1) throw Error("--storage-tables: values must be 0 (texel buffers) or 1 (storage buffers)");
+  check_plan_size({{"--hash-cell", cells.size()}, {"--octree-depth", depths.size()}, {"--octree-min-objects", min_objects.size()},
+                   {"--mesh-cell", mesh_cells.size()}, {"--over-relax", omegas.size()}, {"--cell-bound", bounds.size()},
+                   {"--storage-tables", storages.size()}});
   std::vector<BenchConfig> plan;
-  for (float cell : parse_list<float>(args.hash_cells, "--hash-cell"))
-    for (unsigned depth : parse_list<unsigned>(args.depths, "--octree-depth"))
-      for (unsigned min_objects : parse_list<unsigned>(args.min_objects, "--octree-min-objects"))
-        for (float mesh_cell : parse_list<float>(args.mesh_cells, "--mesh-cell"))
-          for (float omega : parse_list<float>(args.over_relax, "--over-relax"))
-            for (unsigned bound : parse_list<unsigned>(args.cell_bound, "--cell-bound"))
-              for (unsigned storage : parse_list<unsigned>(args.storage_tables, "--storage-tables")) {
-              BenchConfig c = base;
-              if (bound > 1) throw Error("--cell-bound: values must be 0 (off) or 1 (on)");
-              if (storage > 1) throw Error("--storage-tables: values must be 0 (texel buffers) or 1 (storage buffers)");
-              c.options.tracing.cell_bound = bound == 1;
-              c.options.tracing.storage_tables = storage == 1;
-              if (!(omega >= 1.0f && omega <= 1.95f)) throw Error("--over-relax: values must be in [1, 1.95]");
-              c.options.tracing.over_relax = omega;
-              c.options.scene_hash.hash_cell = cell;
-              c.options.scene_hash.octree_depth = depth;
-              c.options.scene_hash.octree_min_objects = min_objects;
-              c.options.mesh_grid.cell_size = mesh_cell;
-              sdf::validate(c.options.scene_hash);
-              if (min_objects < 1) throw Error("--octree-min-objects: values must be >= 1");
-              plan.push_back(c);
-            }
-  run_and_report(plan, args.run);
+  for (float cell : cells)
+    for (unsigned depth : depths)
+      for (unsigned min_object_count : min_objects)
+        for (float mesh_cell : mesh_cells)
+          for (float omega : omegas)
+            for (unsigned bound : bounds)
+              for (unsigned storage : storages) {
+                BenchConfig c = base;
+                c.options.tracing.cell_bound = bound == 1;
+                c.options.tracing.storage_tables = storage == 1;
+                c.options.tracing.over_relax = omega;
+                c.options.scene_hash.hash_cell = cell;
+                c.options.scene_hash.octree_depth = depth;
+                c.options.scene_hash.octree_min_objects = min_object_count;
+                c.options.mesh_grid.cell_size = mesh_cell;
+                sdf::validate(c.options.scene_hash);
+                plan.push_back(c);
+              }
+  run_and_report(plan, args.run, scene_inputs(load_scene(args.scene)));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // beside them in the same mode, thesis values alongside.
 #include "harness/cli_common.h"
 #include "harness/commands.h"
+#include "harness/list_option.h"
 #include "harness/run_options.h"
 #include "harness/thesis_tables.h"
 #include "scenes/error.h"
@@ -48,16 +49,19 @@ std::vector<BenchConfig> table_plan(const TableArgs& args) {
     }
   }
   const std::vector<size_t> counts = parse_list<size_t>(args.objects, "--objects");
+  for (size_t count : counts)
+    if (count == 0) throw Error("--objects: counts must be >= 1");
   const std::vector<std::string> backends = split_list(args.backends, "--backends");
   // Unknown names fail here, before hours of work; a device a backend cannot use (vk-rt without
   // ray tracing) makes its rows ERROR rows.
   for (const std::string& b : backends) check_backend_name(b);
   const ImageSize size = parse_size(args.size.empty() ? (args.quick ? "160x90" : "1280x720") : args.size);
+  check_plan_size({{"--meshes x --triangles", mesh_specs.size()}, {"--objects", counts.size()}, {"modes", modes.size()},
+                   {"--backends", backends.size()}});
 
   std::vector<BenchConfig> plan;
   for (const std::string& mesh : mesh_specs)
     for (size_t count : counts) {
-      if (count == 0) throw Error("--objects: counts must be >= 1");
       for (RenderMode mode : modes)
         for (const std::string& backend : backends) {
           BenchConfig c;
@@ -85,7 +89,9 @@ void run_table(TableArgs args) {
   }
   args.run.settings.check_size = parse_size(args.run.check_size);
   args.run.plan();  // a bad --shard fails before the plan is built
-  run_and_report(table_plan(args), args.run);
+  std::vector<NamedPath> inputs;  // the thesis meshes the tables read
+  for (const std::string& mesh : split_list(args.meshes, "--meshes")) inputs.push_back({"the thesis mesh", builtin_mesh_path(mesh)});
+  run_and_report(table_plan(args), args.run, inputs);
 }
 
 }  // namespace

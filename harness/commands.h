@@ -23,4 +23,9 @@ struct CommandFailed {
   int code;
 };
 
+// Exit statuses besides 0 (success) and 1 (an error that stopped the command): compare,
+// check-sdf, table and sweep finished but some result is bad.
+constexpr int kExitRowsDisagree = 2;  // images disagree with the reference (or were cut short)
+constexpr int kExitRowsFailed = 4;    // table / sweep: some configurations failed (ERROR rows)
+
 }  // namespace sdfbench

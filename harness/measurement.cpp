@@ -26,7 +26,8 @@ std::string number(const std::optional<double>& v) { return v ? number(*v) : "";
 const std::vector<std::string> kKeyColumns = {
     "table", "scene", "backend", "mode", "max_depth", "width", "height", "hash_cell", "octree_depth",
     "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent", "fixed_grid", "hit", "max_steps", "hit_epsilon",
-    "hit_footprint", "over_relax", "cell_bound", "storage_tables", "requested_frames", "warmup", "budget_s", "check_size", "reference", "requested_device",
+    "hit_footprint", "over_relax", "cell_bound", "storage_tables", "max_structure_mb", "cache", "on_bad_cache", "requested_frames", "warmup",
+    "budget_s", "check_size", "reference", "requested_device",
     "whitted_passes", "validate", "threads"};
 
 }  // namespace
@@ -35,7 +36,8 @@ const std::vector<std::string>& measurement_columns() {
   static const std::vector<std::string> columns = {
       "run_index", "run_id", "table", "scene", "mesh", "triangles", "objects", "backend", "mode", "max_depth", "width", "height",
       "hash_cell", "octree_depth", "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent", "fixed_grid", "hit",
-      "max_steps", "hit_epsilon", "hit_footprint", "over_relax", "cell_bound", "storage_tables", "requested_frames", "warmup", "budget_s", "reference",
+      "max_steps", "hit_epsilon", "hit_footprint", "over_relax", "cell_bound", "storage_tables", "max_structure_mb", "cache", "on_bad_cache",
+      "requested_frames", "warmup", "budget_s", "reference",
       "requested_device", "whitted_passes", "validate", "frames", "clock", "ms_median", "ms_min", "ms_max",
       "ms_wall_median", "fps", "mrays_per_s", "rays_per_pixel", "steps_per_ray", "instance_evals_per_ray",
       "triangle_evals_per_ray", "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray", "prepare_ms", "build_ms", "structure_bytes", "check_size", "hit_agreement",
@@ -48,7 +50,8 @@ std::vector<std::string> to_csv_fields(const Measurement& m) {
           m.backend, m.mode, std::to_string(m.max_depth), std::to_string(m.width), std::to_string(m.height),
           number(m.hash_cell), number(m.octree_depth), number(m.octree_min_objects), number(m.octree_min_size), m.lists,
           number(m.mesh_cell), number(m.cells_per_extent), number(m.fixed_grid), m.hit, number(m.max_steps), number(m.hit_epsilon),
-          number(m.hit_footprint), number(m.over_relax), number(m.cell_bound), number(m.storage_tables), std::to_string(m.requested_frames), std::to_string(m.warmup), number(m.budget_s),
+          number(m.hit_footprint), number(m.over_relax), number(m.cell_bound), number(m.storage_tables), number(m.max_structure_mb),
+          m.cache, m.on_bad_cache, std::to_string(m.requested_frames), std::to_string(m.warmup), number(m.budget_s),
           m.reference, m.requested_device, m.whitted_passes, m.validate ? "1" : "0", std::to_string(m.frames), m.clock, number(m.ms_median), number(m.ms_min), number(m.ms_max),
           number(m.ms_wall_median), number(m.fps), number(m.mrays_per_s), number(m.rays_per_pixel),
           number(m.steps_per_ray), number(m.instance_evals_per_ray), number(m.triangle_evals_per_ray),

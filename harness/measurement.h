@@ -29,6 +29,10 @@ struct Measurement {
   // the run's methodology, as requested (--frames, --warmup, --budget-s, --reference, --device, ...)
   unsigned requested_frames = 0, warmup = 0;
   double budget_s = 0;
+  // what decides whether and how an SDF row's structures are built: the memory cap (--max-structure-mb)
+  // and the structure cache (--cache, --on-bad-cache: "refuse" or "rebuild"; empty without a cache)
+  std::optional<double> max_structure_mb;
+  std::string cache, on_bad_cache;
   std::string reference, requested_device, whitted_passes;  // whitted_passes: "auto", "on" or "off"
   bool validate = false;
   // timing

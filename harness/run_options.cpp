@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "harness/cli_common.h"
+#include "harness/commands.h"
 #include "harness/markdown_report.h"
 #include "harness/thesis_tables.h"
 #include "util/atomic_file.h"
@@ -37,9 +38,12 @@ void write_markdown(const std::string& path, const CsvTable& rows) {
   write_file_atomically(path, std::as_bytes(std::span(text.data(), text.size())));
 }
 
-void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& options) {
+void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& options, const std::vector<NamedPath>& inputs) {
   const PlanOptions plan_options = options.plan();
   if (!options.markdown.empty()) check_output_path(options.markdown, "--markdown");
+  check_distinct_outputs({{"--csv", options.csv}, {"--markdown", options.markdown},
+                          {"--cache", plan.empty() ? std::string() : plan.front().options.cache.path}},
+                         inputs);
   std::cerr << plan.size() << " configurations";
   if (plan_options.shard.count > 1) std::cerr << " (this is shard " << plan_options.shard.index << "/" << plan_options.shard.count << ")";
   std::cerr << "\n";
@@ -47,6 +51,24 @@ void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& opti
   const CsvTable rows = run_plan(plan, runner, plan_options);
   write_markdown(options.markdown, rows);
   std::cout << "\n" << markdown_report(rows, ThesisTables::load_default());
+  // The exit status says what the rows say (README, "Tables, sweeps and their CSV").
+  size_t failed = 0, disagreed = 0;
+  const size_t agreement = rows.column("agreement");
+  for (const auto& row : rows.rows) {
+    failed += row[agreement].rfind("ERROR", 0) == 0;
+    disagreed += row[agreement].rfind("DISAGREE", 0) == 0 || row[agreement].rfind("TRUNCATED", 0) == 0 ||
+                 row[agreement].find("validation messages") != std::string::npos;
+  }
+  if (failed) {
+    std::cerr << "sdfbench: " << failed << " of " << rows.rows.size() << " configurations failed (ERROR rows"
+              << (options.csv.empty() ? "" : " in '" + options.csv + "'; --resume runs them again") << ")\n";
+    throw CommandFailed{kExitRowsFailed};
+  }
+  if (disagreed) {
+    std::cerr << "sdfbench: " << disagreed << " of " << rows.rows.size()
+              << " configurations disagree with the reference or were cut short (DISAGREE / TRUNCATED rows)\n";
+    throw CommandFailed{kExitRowsDisagree};
+  }
 }
 
 }  // namespace sdfbench

@@ -7,6 +7,7 @@
 
 #include "harness/benchmark_plan.h"
 #include "harness/benchmark_runner.h"
+#include "harness/output_paths.h"
 
 namespace sdfbench {
 
@@ -23,6 +24,9 @@ void add_run_options(CLI::App& command, RunOptions& options);
 void write_markdown(const std::string& path, const CsvTable& rows);
 
 // Runs `plan` as `options` say (shard, resume, CSV), then writes and prints the markdown report.
-void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& options);
+// The outputs (--csv, --markdown, --cache) are checked first against each other and `inputs`
+// (the files the plan's scenes are read from). Throws CommandFailed when rows failed or
+// disagree (kExitRowsFailed, kExitRowsDisagree).
+void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& options, const std::vector<NamedPath>& inputs);
 
 }  // namespace sdfbench

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <glm/gtc/constants.hpp>
@@ -27,6 +28,9 @@ template <class T>
 T parse_number(const std::string& text, const std::string& spec, const char* what) {
   T value{};
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec == std::errc::result_out_of_range && end == text.data() + text.size())
+    throw Error("scene '" + spec + "': " + what + " '" + text + "' is out of range (at most " +
+                std::to_string(std::numeric_limits<T>::max()) + ")");
   if (ec != std::errc() || end != text.data() + text.size())
     throw Error("scene '" + spec + "': " + what + " '" + text + "' is not a non-negative integer");
   return value;
@@ -87,7 +91,8 @@ ThesisLayoutSpec parse_thesis_spec(const std::string& spec) {
 
 Scene make_thesis_scene(const ThesisLayoutSpec& spec) {
   Scene scene;
-  const std::string mesh_spec = spec.mesh + (spec.triangles ? "@" + std::to_string(spec.triangles) : "");
+  std::string mesh_spec = spec.mesh;  // (appended: "@" + std::to_string(n) trips GCC 12's false -Wrestrict, bug 105651)
+  if (spec.triangles) mesh_spec.append("@").append(std::to_string(spec.triangles));
   scene.name = "thesis:" + mesh_spec + ":" + std::to_string(spec.count) + ":" + std::to_string(spec.seed);
   scene.meshes.push_back(spec.triangles ? load_sized_mesh(spec.mesh, spec.triangles) : load_obj(builtin_mesh_path(spec.mesh), spec.mesh));
   add_materials(scene);

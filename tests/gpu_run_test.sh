@@ -35,6 +35,25 @@ grep -q "12 configuration(s) already" "$work/log2" || fail "the rerun did not re
 ! grep -q "gpu_run: compare" "$work/log2" || fail "--tables-only ran the compares"
 cmp -s "$work/before.csv" "$dir/tables.csv" || fail "the rerun changed the finished tables"
 
+# Failed rows reach the exit status: with the ray-tracing extension hidden, the table's vk-rt
+# rows are ERROR rows, so the run exits 4 (and a run again retries them).
+status=0
+SDFBENCH_VULKAN_HIDE_EXTENSIONS=VK_KHR_ray_tracing_pipeline "$script" --binary "$binary" --device lavapipe --size 32x18 \
+  --budget-s 1 --frames 1 --out "$work/failing" --tables-only -- --table 6.3 --meshes sphere --objects 1 \
+  --backends embree,vk-rt --check-size 32x18 >"$work/log3" 2>&1 || status=$?
+[[ $status -eq 4 ]] || { tail -5 "$work/log3"; fail "a table with ERROR rows: gpu_run.sh exited $status, expected 4"; }
+grep -q "some configurations failed" "$work/log3" || fail "gpu_run.sh did not say that configurations failed: $(tail -3 "$work/log3")"
+"$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --out "$work/failing" --tables-only \
+  -- --table 6.3 --meshes sphere --objects 1 --backends embree,vk-rt --check-size 32x18 >"$work/log4" 2>&1 ||
+  { tail -5 "$work/log4"; fail "the rerun with ray tracing did not finish cleanly"; }
+grep -q "retrying 1 configuration" "$work/log4" || fail "the rerun did not retry the failed row: $(grep -m2 resume "$work/log4")"
+
+# --out is relative to the folder the script is started from, not the repository.
+(cd "$work" && "$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --out relout --tables-only \
+  -- --table 6.3 --meshes sphere --objects 1 --backends embree --check-size 32x18 >"$work/log5" 2>&1) ||
+  { tail -5 "$work/log5"; fail "--out relout failed"; }
+ls "$work"/relout/llvmpipe-*/tables.csv >/dev/null 2>&1 || fail "--out relout did not write under the caller's folder"
+
 # Bad input: one line naming the flag or device, exit 1.
 expect_error() {  # PATTERN ARGS...
   local pattern=$1 status=0
@@ -48,5 +67,9 @@ expect_error "no Vulkan device 'no-such-gpu'" --device no-such-gpu
 expect_error "--minutes takes whole minutes" --minutes 0
 expect_error "--binary '/nonexistent'" --binary /nonexistent
 expect_error "--size needs a value" --size
+expect_error "--size takes WIDTHxHEIGHT" --size 0x10
+expect_error "--compare-size takes WIDTHxHEIGHT" --compare-size big
+expect_error "--frames takes a whole number" --frames x
+expect_error "--budget-s takes seconds" --budget-s -1
 [[ ! -e $work/bad ]] || fail "a refused run created its output folder"
 echo "gpu_run.sh test: all passed"

@@ -6,11 +6,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <set>
 #include <thread>
 
 #include "harness/benchmark_plan.h"
+#include "harness/commands.h"
 #include "harness/csv.h"
 #include "harness/markdown_report.h"
 #include "harness/measurement.h"
@@ -70,7 +72,7 @@ TEST(MeasurementColumns, MatchTheDocumentedListAndFieldCount) {
   const std::vector<std::string>& c = measurement_columns();
   for (const char* required : {"scene", "mesh", "triangles", "objects", "backend", "mode", "width", "height", "hash_cell",
                                "octree_depth", "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent",
-                               "hit", "max_steps", "hit_epsilon", "hit_footprint", "over_relax", "cell_bound", "storage_tables", "requested_frames", "warmup", "budget_s",
+                               "hit", "max_steps", "hit_epsilon", "hit_footprint", "over_relax", "cell_bound", "storage_tables", "max_structure_mb", "cache", "on_bad_cache", "requested_frames", "warmup", "budget_s",
                                "reference", "requested_device", "whitted_passes", "validate", "frames", "ms_median", "ms_min", "ms_max",
                                "fps", "mrays_per_s", "steps_per_ray", "instance_evals_per_ray", "triangle_evals_per_ray",
                                "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray",
@@ -312,12 +314,72 @@ TEST(TableCommand, BadArgumentsAreClearErrors) {
       {"sweep --scene thesis:sphere:1 --over-relax 1,2.5", "--over-relax"},
       {"sweep --scene thesis:sphere:1 --cell-bound 0,2", "--cell-bound"},
       {"render --scene thesis:sphere:1 --backend sdf-cpu --cell-bound", "sdf-cpu: --cell-bound"},
+      // Issue 27: values that are not finite, integers past their type, values listed twice, a
+      // plan too large to build, a compare of nothing.
+      {"sweep --scene thesis:sphere:1 --mesh-cell nan", "'nan' is not a finite number"},
+      {"sweep --scene thesis:sphere:1 --hash-cell inf", "'inf' is not a finite number"},
+      {"sweep --scene thesis:sphere:1 --octree-depth 5000000000", "'5000000000' is out of range (at most 4294967295)"},
+      {"table --objects 1,1", "--objects '1,1': '1' is listed twice"},
+      {"table --backends embree,bvh,embree", "'embree' is listed twice"},
+      {"sweep --scene thesis:sphere:1 --hash-cell 10,10.0", "'10.0' is listed twice (as '10')"},
+      {"compare --scene thesis:sphere:1 --backends embree,embree", "'embree' is listed twice"},
+      {"compare --scene thesis:sphere:1 --backends embree", "nothing to compare"},
+      {"render --scene thesis:sphere:99999999999 --backend embree", "'99999999999' is out of range (at most 4294967295)"},
   };
   for (const auto& [args, words] : cases) {
     const test::CommandResult r = test::run_sdfbench(args);
     EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.output;
     EXPECT_NE(r.output.find(words), std::string::npos) << args << "\n" << r.output;
   }
+}
+
+// Issue 27, class 3: the plan's size is known before it is built; 25 M configurations are refused
+// at once (in well under the minutes and gigabytes building them took), with the count and the limit.
+TEST(SweepCommand, APlanTooLargeIsRefusedBeforeItIsBuilt) {
+  std::string values;
+  for (int i = 1; i <= 5000; ++i) values.append(i > 1 ? "," : "").append(std::to_string(i));
+  const test::CommandResult r =
+      test::run_sdfbench("sweep --scene thesis:sphere:1 --hash-cell " + values + " --octree-min-objects " + values);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("the plan lists 25000000 configurations (--hash-cell 5000 x --octree-depth 1 x --octree-min-objects 5000"),
+            std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the limit of 100000"), std::string::npos) << r.output;
+  EXPECT_THROW(check_plan_size({{"a", size_t(1) << 40}, {"b", size_t(1) << 40}}), Error);  // no overflow to a small product
+  EXPECT_NO_THROW(check_plan_size({{"a", 1000}, {"b", 100}}));
+}
+
+// Issue 27, classes 6, 9 and 13: failed rows make the exit status 4; --resume runs them again
+// (and says so); the structure cap is part of the key; an empty shard still writes its CSV.
+TEST(SweepCommand, FailedRowsExitNonZeroAndResumeRetriesThem) {
+  test::TempDir dir;
+  const std::string csv = (dir.path() / "s.csv").string();
+  // The ray-tracing extension hidden: the vk-rt row is an ERROR row.
+  const test::CommandResult hidden = test::run_shell("SDFBENCH_VULKAN_HIDE_EXTENSIONS=VK_KHR_ray_tracing_pipeline " +
+                                                     std::string(SDFBENCH_BINARY) + " table --table 6.3 --meshes sphere "
+                                                     "--objects 1 --backends embree,vk-rt --size 32x18 --check-size 32x18 "
+                                                     "--frames 1 --warmup 0 --csv " + csv + " 2>&1");
+  EXPECT_EQ(hidden.exit_code, kExitRowsFailed) << hidden.output;
+  EXPECT_NE(hidden.output.find("1 of 2 configurations failed (ERROR rows in '" + csv + "'; --resume runs them again)"),
+            std::string::npos) << hidden.output;
+  const test::CommandResult resumed = test::run_sdfbench("table --table 6.3 --meshes sphere --objects 1 --backends embree,vk-rt "
+                                                         "--size 32x18 --check-size 32x18 --frames 1 --warmup 0 --resume --csv " + csv);
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("resume: retrying 1 configuration(s) that failed before"), std::string::npos) << resumed.output;
+  const CsvTable rows = read_csv(csv);
+  ASSERT_EQ(rows.rows.size(), 2u);
+  for (const auto& row : rows.rows) EXPECT_EQ(row[rows.column("agreement")].rfind("ERROR", 0), std::string::npos);
+
+  // Shard 3 of 5 of a 2-configuration table has nothing to run: its CSV is the header alone.
+  const std::string empty = (dir.path() / "empty.csv").string();
+  const test::CommandResult shard = test::run_sdfbench("table --table 6.3 --meshes sphere --objects 1 --backends embree,tri-aabb "
+                                                       "--size 32x18 --frames 1 --shard 3/5 --csv " + empty);
+  EXPECT_EQ(shard.exit_code, 0) << shard.output;
+  EXPECT_EQ(read_csv(empty).rows.size(), 0u);
+  EXPECT_EQ(read_csv(empty).columns, measurement_columns());
+
+  const std::vector<std::string>& key = configuration_key_columns();
+  for (const char* column : {"max_structure_mb", "cache", "on_bad_cache"})
+    EXPECT_NE(std::find(key.begin(), key.end(), column), key.end()) << column;
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include "harness/csv.h"
 #include "harness/measurement.h"
 #include "scenes/error.h"
+#include "scenes/mesh.h"
 #include "tests/test_support.h"
 #include "util/atomic_file.h"
 
@@ -395,6 +396,48 @@ TEST(OutputSafety, FifoCsvInputsAreErrorsNotHangs) {
   expect_user_error("merge /dev/zero --csv " + (dir.path() / "out.csv").string(), "not a regular file");
   EXPECT_THROW(read_csv(fifo), Error);
   EXPECT_EQ(names(dir.path()), std::set<std::string>{"in.csv"});
+}
+
+// Issue 27, class 8: one path named twice among the outputs, or an output that is an input,
+// is refused at start-up (after resolving `..`, symlinked folders and links), and nothing changes.
+TEST(OutputSafety, AnOutputThatIsAnotherOutputOrAnInputIsRefused) {
+  const test::TempDir dir;
+  const fs::path texture = dir.path() / "wood.png";
+  ASSERT_EQ(test::run_sdfbench(kRender + " --out " + texture.string()).exit_code, 0);  // a real PNG to texture with
+  const fs::path scene = dir.write("scene.json", R"({"meshes": {"ball": {"builtin": "sphere"}},
+      "materials": {"paint": {"albedo": [1, 1, 1], "texture": {"file": "wood.png"}}},
+      "instances": [{"mesh": "ball"}], "camera": {"position": [0, 1, 4], "look_at": [0, 0, 0]}})");
+  fs::create_directory(dir.path() / "sub");
+  fs::create_directory_symlink(dir.path(), dir.path() / "alias");
+  const std::string render = "render --backend embree --size 16x9 --frames 1 --warmup 0 --scene " + scene.string();
+  const std::string sdf_render = "render --backend sdf-cpu --size 16x9 --frames 1 --warmup 0 --scene " + scene.string();
+  const std::string x = (dir.path() / "x.exr").string(), x_again = (dir.path() / "sub" / ".." / "x.exr").string();
+  const std::string csv = (dir.path() / "x.csv").string();
+  const auto before = snapshot(dir.path());
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {render + " --out " + x + " --aov " + x_again, {"--aov", "same file as --out"}},
+      {sdf_render + " --out " + x + " --heatmap " + (dir.path() / "alias" / "x.exr").string(), {"--heatmap", "same file"}},
+      {render + " --out " + texture.string(), {"--out", "the scene's texture", "destroy an input"}},
+      {render + " --out " + (dir.path() / "alias" / "wood.png").string(), {"the scene's texture"}},
+      {sdf_render + " --cache " + scene.string(), {"--cache", "--scene"}},
+      {"build --scene " + scene.string() + " --cache " + scene.string(), {"--cache", "--scene", "destroy an input"}},
+      {kSweep + " --csv " + csv + " --markdown " + csv, {"--markdown", "same file as --csv"}},
+      {"table --table 6.3 --meshes sphere --objects 1 --backends embree --csv " + builtin_mesh_path("sphere").string(),
+       {"--csv", "the thesis mesh"}},
+  };
+  for (const auto& [args, words] : cases) expect_user_error(args, words);
+  EXPECT_EQ(snapshot(dir.path()), before);
+  // compare --out-dir writes DIR/<backend>.png: a texture of that name is an input.
+  fs::copy_file(texture, dir.path() / "embree.png");
+  const fs::path scene2 = dir.write("scene2.json", R"({"meshes": {"ball": {"builtin": "sphere"}},
+      "materials": {"paint": {"albedo": [1, 1, 1], "texture": {"file": "embree.png"}}},
+      "instances": [{"mesh": "ball"}], "camera": {"position": [0, 1, 4], "look_at": [0, 0, 0]}})");
+  expect_user_error("compare --scene " + scene2.string() + " --backends embree,tri-aabb --size 16x9 --out-dir " + dir.path().string(),
+                    std::vector<std::string>{"--out-dir image", "embree.png", "the scene's texture"});
+  // merge onto one of its inputs.
+  const test::CommandResult run = test::run_sdfbench(kSweep + " --csv " + csv);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  expect_user_error("merge " + csv + " --csv " + csv, std::vector<std::string>{"--csv", "the input"});
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 
@@ -128,6 +129,60 @@ TEST_F(SizedMesh, CacheIsWrittenOnceAndReadBackIdentical) {
   EXPECT_EQ(repaired.triangles, first.triangles);
   EXPECT_EQ(fs::file_size(files[0]) > 0, true);
   EXPECT_EQ(load_obj(files[0], "x").triangle_count(), first.triangle_count());
+}
+
+// The cache verifies what it reads (issue 27, class 5): a symlink at the cache's name (to another
+// mesh) is never followed, and a file missing faces or with a moved vertex fails its digest; each
+// is made again and gives the real mesh, and the made mesh replaces a damaged file.
+TEST_F(SizedMesh, CacheNeverTrustsALinkOrAChangedFile) {
+  const Mesh made = load_sized_mesh("sphere", 800);
+  fs::path file;
+  for (const auto& e : fs::directory_iterator(mesh_cache_dir())) file = e.path();
+  ASSERT_FALSE(file.empty());
+  const std::string original = [&] {
+    std::ifstream in(file);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  auto write = [&](const std::string& text) {
+    fs::remove(file);
+    std::ofstream(file) << text;
+  };
+  auto expect_real_mesh = [&](const std::string& what) {
+    const Mesh again = load_sized_mesh("sphere", 800);
+    EXPECT_EQ(again.triangles, made.triangles) << what;
+    EXPECT_EQ(again.positions, made.positions) << what;
+  };
+  // A symlink to another mesh: never followed, and never replaced (the atomic writer refuses a link).
+  fs::remove(file);
+  fs::create_symlink(builtin_mesh_path("teapot"), file);
+  expect_real_mesh("symlink");
+  EXPECT_TRUE(fs::is_symlink(file));
+  // One face fewer (0.5 % of 800 is 4: within the count tolerance, so only the digest catches it).
+  const size_t last_face = original.rfind("\nf ");
+  write(original.substr(0, last_face + 1));
+  expect_real_mesh("a face missing");
+  // One vertex moved.
+  std::string moved = original;
+  const size_t v = moved.find("\nv ") + 3;
+  moved.replace(v, 1, moved[v] == '-' ? "1" : "-");
+  write(moved);
+  expect_real_mesh("a vertex moved");
+  // The file was made again each time and now reads back as written.
+  std::ifstream in(file);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), original);
+}
+
+// A cache folder that cannot be written is a warning on a line of its own, not the end of the run.
+TEST_F(SizedMesh, UnwritableCacheWarnsAndTheRunGoesOn) {
+  const fs::path blocked = dir_.path() / "a-file";
+  std::ofstream(blocked) << "not a folder";
+  ::setenv("SDFBENCH_MESH_CACHE", (blocked / "meshes").c_str(), 1);
+  const test::CommandResult r = test::run_sdfbench(
+      "render --scene thesis:sphere@600:1 --backend embree --size 32x18 --frames 1 --warmup 0");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("\nwarning: mesh cache: "), std::string::npos) << r.output;  // at a line's start
+  EXPECT_EQ(r.output.find("error"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("600"), std::string::npos) << r.output;
 }
 
 // The axis in `table`: one row per size with the real triangle count; bad sizes are one-line errors.

@@ -17,33 +17,46 @@
 # On lavapipe, as a check of the script: --device lavapipe --size 64x36 --compare-size 64x36.
 # --binary defaults to $SDFBENCH, else build/sdfbench, else ./sdfbench (the launcher at the top
 # of a bundle from make_bundle.sh, where this script is harness/scripts/gpu_run.sh).
-# Exit status: 0 when every compare agreed and the tables finished, 2 when a compare disagreed,
-# 3 when the tables were cut by --minutes (run it again, with --tables-only to skip the info and
-# the compares already done, to finish), 1 on an error.
+# Exit status: 0 when every compare agreed and every table and sweep row ran and agreed, 2 when a
+# compare or a row disagreed, 3 when the tables were cut by --minutes (run it again, with
+# --tables-only to skip the info and the compares already done, to finish; failed rows are run
+# again), 4 when some table or sweep configurations failed (ERROR rows), 1 on an error.
+# --out and --binary, when given, are relative to the folder the script is started from.
 set -euo pipefail
+caller_dir=$PWD
 cd "$(dirname "$0")/../.."
 device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=results storage_scene=thesis:bunny:1000
 binary=${SDFBENCH:-build/sdfbench}
 [[ -n ${SDFBENCH:-} || -x $binary || ! -x sdfbench ]] || binary=./sdfbench
-table_flags=() tables_only=0
+table_flags=() tables_only=0 failed=0
 die() { echo "gpu_run.sh: error: $*" >&2; exit 1; }
+from_caller() { if [[ $1 == /* ]]; then echo "$1"; else echo "$caller_dir/$1"; fi; }
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --device|--size|--compare-size|--budget-s|--frames|--minutes|--out|--binary|--storage-scene)
       [[ $# -ge 2 ]] || die "$1 needs a value"
       case "$1" in
         --device) device=$2 ;; --size) size=$2 ;; --compare-size) compare_size=$2 ;; --budget-s) budget=$2 ;;
-        --frames) frames=$2 ;; --minutes) minutes=$2 ;; --out) out=$2 ;; --binary) binary=$2 ;;
+        --frames) frames=$2 ;; --minutes) minutes=$2 ;; --out) out=$(from_caller "$2") ;; --binary) binary=$(from_caller "$2") ;;
         --storage-scene) storage_scene=$2 ;;
       esac
       shift 2 ;;
     --tables-only) tables_only=1; shift ;;
     --) shift; table_flags=("$@"); break ;;
-    -h|--help) sed -n 2,23p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,24p "$0"; exit 0 ;;
     *) die "unknown argument '$1' (see --help)" ;;
   esac
 done
-[[ $minutes =~ ^[0-9]+$ && $minutes -gt 0 ]] || die "--minutes takes whole minutes > 0, not '$minutes'"
+# Every value checked before minutes of work.
+[[ $minutes =~ ^[0-9]{1,5}$ && $minutes -gt 0 ]] || die "--minutes takes whole minutes > 0, not '$minutes'"
+[[ $frames =~ ^[0-9]{1,5}$ && $frames -gt 0 ]] || die "--frames takes a whole number > 0, not '$frames'"
+[[ $budget =~ ^([0-9]+\.?[0-9]*|\.[0-9]+)$ ]] && awk -v b="$budget" 'BEGIN{exit !(b > 0 && b <= 1e7)}' ||
+  die "--budget-s takes seconds > 0, not '$budget'"
+for pair in "--size:$size" "--compare-size:$compare_size"; do
+  value=${pair#*:}
+  [[ $value =~ ^[1-9][0-9]{0,4}x[1-9][0-9]{0,4}$ ]] || die "${pair%%:*} takes WIDTHxHEIGHT (e.g. 1280x720), not '$value'"
+done
+
 [[ -x $binary ]] || die "--binary '$binary' is not an executable (build first, or set SDFBENCH)"
 
 # The device's name, as the renderer reports it, names the folder.
@@ -57,13 +70,15 @@ mkdir -p "$dir"
 echo "gpu_run: device '$name' -> $dir" >&2
 
 agreement="$dir/agreement.txt" disagreed=0
+backends=tri-aabb,bvh,sdf-hash,sdf-octree
+if "$binary" render --scene thesis:sphere:1 --backend vk-rt --size 16x9 --frames 1 --warmup 0 --device "$device" >/dev/null 2>&1; then
+  backends=$backends,vk-rt
+else
+  echo "gpu_run: vk-rt does not run on '$name': left out of the compares and the tables" >&2
+  # (unless the table flags name their own backends)
+  [[ " ${table_flags[*]} " == *" --backends"* ]] || table_flags=(--backends "embree,$backends" "${table_flags[@]}")
+fi
 if [[ $tables_only -eq 0 ]]; then
-  backends=tri-aabb,bvh,sdf-hash,sdf-octree
-  if "$binary" render --scene thesis:sphere:1 --backend vk-rt --size 16x9 --frames 1 --warmup 0 --device "$device" >/dev/null 2>&1; then
-    backends=$backends,vk-rt
-  else
-    echo "gpu_run: vk-rt does not run on '$name': left out of the compares" >&2
-  fi
 
   {
     echo "# $(date -u +%Y-%m-%dT%H:%M:%SZ) harness/scripts/gpu_run.sh on $(uname -n)"
@@ -100,7 +115,10 @@ if [[ $tables_only -eq 0 ]]; then
       "$binary" sweep --scene "$storage_scene" --backend "$backend" --hash-cell "$cell" --mode "$mode" --size "$size" --frames "$frames" \
         --budget-s "$budget" --storage-tables 0,1 --device "$device" --csv "$parts/${backend}_$mode.csv" \
         >"$parts/${backend}_$mode.log" 2>&1 || status=$?
-      case $status in 0) ;; 2) disagreed=1 ;; *) die "the storage-vs-texel sweep ($backend, $mode) failed; see $parts/${backend}_$mode.log" ;; esac
+      case $status in
+        0) ;; 2) disagreed=1 ;; 4) failed=1 ;;
+        *) die "the storage-vs-texel sweep ($backend, $mode) failed; see $parts/${backend}_$mode.log" ;;
+      esac
     done
   done
   "$binary" merge "$parts"/*.csv --several-runs --csv "$dir/storage_vs_texel.csv" --markdown "$dir/storage_vs_texel.md" >/dev/null ||
@@ -116,8 +134,11 @@ status=0
 timeout --signal=INT "${minutes}m" "${table[@]}" || status=$?
 case $status in
   0) ;;
+  2) disagreed=1 ;;
+  4) failed=1 ;;
   124|130) echo "gpu_run: the tables were cut at $minutes min; run the same command again (with --tables-only) to finish them" >&2; exit 3 ;;
   *) die "the tables failed (exit $status)" ;;
 esac
-[[ $disagreed -eq 0 ]] || { echo "gpu_run: a compare disagreed; see $agreement" >&2; exit 2; }
+[[ $failed -eq 0 ]] || { echo "gpu_run: some configurations failed (ERROR rows in $dir/tables.csv or the storage sweeps); run it again to retry them" >&2; exit 4; }
+[[ $disagreed -eq 0 ]] || { echo "gpu_run: a compare or a table row disagreed; see $agreement and $dir/tables.md" >&2; exit 2; }
 echo "gpu_run: done: $dir (info.txt, agreement.txt, storage_vs_texel.csv/.md, tables.csv, tables.md)" >&2

@@ -18,8 +18,10 @@
 # Everything after -- goes to sdfbench table/sweep unchanged; --shard, --csv, --markdown and
 # --resume are this script's.
 #
-# Each task resumes its own CSV (--resume), so a requeued task continues where it stopped, and
-# a CSV of another run (other flags) is refused, not mixed in. Slurm does not requeue a task
+# Each task resumes its own CSV (--resume), so a requeued task continues where it stopped (and
+# runs again the configurations that failed), and a CSV of another run (other flags) is refused,
+# not mixed in. The task exits with sdfbench's status: 0 all rows agree, 2 some disagree, 4 some
+# configurations failed (ERROR rows), 1 an error; Slurm shows it as the task's exit code. Slurm does not requeue a task
 # that reaches its time limit, so Slurm signals this script (USR1) 5 minutes before it: the
 # script stops sdfbench (the CSV is complete up to the last finished row) and requeues the
 # task. Lavapipe (and Embree, by default) get the CPUs Slurm allocated (--cpus-per-task, default 1).
@@ -57,8 +59,9 @@ case "$command" in table|sweep) ;; *) die "SDFBENCH_COMMAND '$command': expected
 task=${SLURM_ARRAY_TASK_ID:-}
 [ -n "$task" ] || die "not a job array task: submit it as sbatch --array=1-N $0 --shards N"
 [ -n "$shards" ] || die "--shards N (or SDFBENCH_SHARDS) is required: the number of shards of the whole run, e.g. --shards 8 with --array=1-8"
-[[ "$shards" =~ ^[1-9][0-9]*$ ]] || die "--shards '$shards': expected a positive integer"
-[[ "$task" =~ ^[0-9]+$ ]] && [ "$task" -ge 1 ] && [ "$task" -le "$shards" ] ||
+# (at most 6 digits before any arithmetic: a longer number would overflow the shell's integers)
+[[ "$shards" =~ ^[1-9][0-9]{0,5}$ ]] && [ "$shards" -le 100000 ] || die "--shards '$shards': expected a positive integer up to 100000"
+[[ "$task" =~ ^[0-9]{1,6}$ ]] && [ "$task" -ge 1 ] && [ "$task" -le "$shards" ] ||
   die "array task $task is not a shard of 1..$shards: use --array within 1-$shards (e.g. --array=1-$shards or --array=2,5)"
 
 cd "${SLURM_SUBMIT_DIR:-.}"

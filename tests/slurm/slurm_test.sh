@@ -99,6 +99,16 @@ done
 [ ! -e "$work/bad" ] || fail "a failed task created its --out folder"
 ok "script errors: outside an array, tasks 0 and 4 of 3, no --shards, --csv given"
 
+# A task whose run has failed rows (vk-rt with the ray-tracing extension hidden: an ERROR row)
+# ends FAILED with sdfbench's exit status 4, not COMPLETED.
+failing=$(SDFBENCH_VULKAN_HIDE_EXTENSIONS=VK_KHR_ray_tracing_pipeline submit --array=1 "$script" --shards 1 \
+  --out "$work/failing" -- --table 6.3 --meshes sphere --objects 1 --backends embree,vk-rt --size 32x18 --check-size 32x18 \
+  --frames 1 --warmup 0)
+[ "$(wait_done "${failing}_1")" = FAILED ] || fail "task ${failing}_1 with an ERROR row did not fail: $(tail -3 "$(log_of "${failing}_1")")"
+scontrol -o show job "${failing}_1" | grep -q "ExitCode=4:0" ||
+  fail "task ${failing}_1: not sdfbench's exit status 4: $(scontrol -o show job "${failing}_1" | grep -o 'ExitCode=[^ ]*')"
+ok "a task with an ERROR row ends FAILED with exit status 4"
+
 for k in 1 2 3; do expect_completed "${array}_$k"; done
 build/sdfbench merge "$work"/shards/table_*_of_3.csv --csv "$work/merged.csv" --markdown "$work/merged.md" >/dev/null ||
   fail "merge of the 3 shards"
