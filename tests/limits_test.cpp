@@ -14,6 +14,7 @@
 
 #include "renderers/bvh/bvh_renderer.h"
 #include "renderers/frame_params.h"
+#include "scenes/error.h"
 #include "scenes/scene_loader.h"
 #include "scenes/scene_source.h"
 #include "tests/test_support.h"
@@ -144,7 +145,7 @@ TEST(Limits, HugeSceneExtentGivesRealCellCounts) {
   const test::TempDir dir;
   const std::string scene = dir.write("e9.json", far_scene("9.9e8")).string();
   expect_short_error("build --scene " + scene, {"--hash-cell 10 gives 9.9e+07 x 1 x 1 = 9.9e+07 cells", "limit of 67108864"});
-  expect_short_error("build --scene " + scene + " --hash-cell 1e-30", {"--hash-cell 1e-30 gives 9.9e+38 x", "cells"});
+  expect_short_error("build --scene " + scene + " --hash-cell 1e-30", {"--hash-cell 1e-30 gives 9.9e+38 x", "e+99 cells"});
 }
 
 // One triangle with corners at +-c (as written) on every axis it spans.
@@ -182,14 +183,17 @@ TEST(Limits, HugeCoordinatesRenderOrAreRefusedByEveryBackend) {
   for (const Case& c : cases) {
     const std::string scene = dir.write("scene.json", c.scene).string();
     for (const char* backend : {"embree", "tri-aabb", "bvh", "vk-rt", "sdf-hash", "sdf-octree", "sdf-cpu"})
+      // Refused scenes in every mode; the scene at the limit, which renders, in whitted mode only
+      // (its closest and any-hit queries are the other modes'; each render compiles kernels).
       for (const char* mode : {"primary", "shadow", "whitted"}) {
+        if (c.words.empty() && std::string(mode) != "whitted") continue;
         const std::string args = "render --size 32x18 --frames 1 --warmup 0 --backend " + std::string(backend) + " --mode " +
                                  mode + " --scene " + scene;
         if (!c.words.empty()) {
           expect_short_error(args, c.words, 400, 60);
           continue;
         }
-        const test::CommandResult r = run_limited(args, 60);
+        const test::CommandResult r = run_limited(args, 120);
         const std::string line = last_line(r.output);
         EXPECT_TRUE(r.exit_code == 0 || (r.exit_code == 1 && line.rfind("sdfbench: error: ", 0) == 0))
             << c.name << ": " << args << "\n" << r.output;
