@@ -173,7 +173,7 @@ TEST(Limits, HugeCoordinatesRenderOrAreRefusedByEveryBackend) {
   std::vector<Case> cases;
   for (const std::string c : {"1e19", "1e30", "3e38"}) {
     const std::string obj = dir.write("tri" + c + ".obj", triangle_obj(c)).string();
-    cases.push_back({c, one_mesh_scene(obj, "", "3e38"), {"meshes.tri", "tri" + c + ".obj", "limit of 1e+09"}});
+    cases.push_back({c, one_mesh_scene(obj, "", "5"), {"meshes.tri", "tri" + c + ".obj", "limit of 1e+09"}});
   }
   const std::string small = dir.write("small.obj", triangle_obj("1e4")).string();
   cases.push_back({"scale", one_mesh_scene(small, R"("scale": 1e6)", "1e8"), {"instances[0]", "limit of 1e+09"}});
