@@ -223,7 +223,7 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
   if (rows.empty()) out << "(no measurements)\n";
   out << "Flags: ✗ images disagree with the reference (see the CSV's agreement column), † the time budget cut the run "
          "(fewer frames than asked; a single cold frame when only the warm-up fitted), ✂ lavapipe's loop limit cut pixels "
-         "short (image and FPS invalid; README, \"The loop limit\"), ERROR the configuration failed.\n";
+         "short, or a traversal reached its hard bound (image and FPS invalid; README, \"The loop limit\"), ERROR the configuration failed.\n";
   return out.str();
 }
 

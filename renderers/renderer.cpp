@@ -67,9 +67,10 @@ sdf::SceneHashParams scene_hash_params_for(const std::string& backend, const Bac
 
 std::string truncation_error(const std::string& backend, const FrameResult& frame) {
   if (frame.truncated_pixels == 0) return "";
-  if (backend == "bvh")
-    return backend + ": the traversal stack overflowed on " + std::to_string(frame.truncated_pixels) +
-           " pixels: the image and timing are invalid";
+  if (frame.bound_pixels > 0)
+    return backend + ": " + std::to_string(frame.bound_pixels) +
+           " pixels reached the traversal's hard bound (its stack, or one visit per node or level; a degenerate "
+           "structure or non-finite coordinates): the image and timing are invalid";
   return backend + ": lavapipe's loop limit (65535 iterations per invocation) cut " +
          std::to_string(frame.truncated_pixels) + " pixels short: the image and timing are invalid";
 }

@@ -70,9 +70,10 @@ struct FrameResult {
   double wall_ms = 0.0;     // submit + wait (Vulkan) or the whole frame (CPU)
   uint64_t rays = 0;        // every ray traced (primary + shadow + secondary)
   WorkCounters counters;    // instrumented frames: the work of all rays (per ray: / rays)
-  // Pixels that lavapipe's loop limit cut short (README "The loop limit"): when not 0, the
-  // image and the frame time are invalid.
+  // Pixels cut short, by lavapipe's loop limit (README "The loop limit") or by the kernel's own
+  // bound on a traversal (bound_pixels of them): when not 0, the image and the frame time are invalid.
   uint64_t truncated_pixels = 0;
+  uint64_t bound_pixels = 0;
   FrameImages images;       // filled when FrameRequest::readback
 };
 

@@ -75,6 +75,15 @@ struct Texture {
   uint32_t width = 0, height = 0;  // row-major, top row first
 };
 
+// The largest magnitude of a coordinate a scene may hold, in a mesh's own frame and in the world
+// (instances, implicit objects, camera, point lights, floor). Within it every product the kernels
+// form stays finite in float: the closest-point test's |edge|^4 (Ericson's degeneracy test,
+// barycentrics) reaches (2e9 * sqrt(3))^4 = 1.4e38 < 3.4e38, Möller-Trumbore's |edge|^2 |o - v|
+// less; the max ray distance (100 x the scene's diagonal) stays far below the kernels' "no hit"
+// sentinels (3e38). Beyond it, squares overflow to inf and slab tests, distances and traversals
+// would see inf and NaN.
+inline constexpr float kMaxCoordinate = 1e9f;
+
 struct Scene {
   std::string name;  // the descriptor path or generator spec it came from
   std::vector<Mesh> meshes;
@@ -99,5 +108,10 @@ struct Scene {
   Aabb bounds() const;  // instances and implicit objects
   size_t triangle_count() const;  // over all instances
 };
+
+// Throws Error (prefixed with scene.name) naming the first mesh (its file), instance, implicit
+// object, camera point, point light or floor whose coordinates exceed kMaxCoordinate, with the
+// field as a scene file names it (meshes.<name>, instances[i], ...).
+void check_coordinates(const Scene& scene);
 
 }  // namespace sdfbench

@@ -274,6 +274,7 @@ Scene build_scene(const nlohmann::ordered_json& doc, const std::filesystem::path
     if (render.has("height")) scene.render.height = render.at("height").integer_in(1, kMaxRenderSide);
     if (render.has("max_depth")) scene.render.max_depth = render.at("max_depth").integer_in(1, 16);
   }
+  check_coordinates(scene);
   return scene;
 }
 

@@ -12,8 +12,11 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "renderers/bvh/bvh_renderer.h"
 #include "renderers/frame_params.h"
+#include "scenes/error.h"
 #include "scenes/scene_loader.h"
+#include "scenes/scene_source.h"
 #include "tests/test_support.h"
 
 namespace sdfbench {
@@ -140,9 +143,110 @@ TEST(Limits, FarInstanceChangesNothingInView) {
 
 TEST(Limits, HugeSceneExtentGivesRealCellCounts) {
   const test::TempDir dir;
-  const std::string scene = dir.write("e29.json", far_scene("1e29")).string();
-  expect_short_error("build --scene " + scene, {"--hash-cell 10 gives 1e+28 x 1 x 1 = 1e+28 cells", "limit of 67108864"});
-  expect_short_error("build --scene " + scene + " --hash-cell 1e-30", {"--hash-cell 1e-30 gives 1e+59 x", "e+119 cells"});
+  const std::string scene = dir.write("e9.json", far_scene("9.9e8")).string();
+  expect_short_error("build --scene " + scene, {"--hash-cell 10 gives 9.9e+07 x 1 x 1 = 9.9e+07 cells", "limit of 67108864"});
+  expect_short_error("build --scene " + scene + " --hash-cell 1e-30", {"--hash-cell 1e-30 gives 9.9e+38 x", "e+99 cells"});
+}
+
+// One triangle with corners at +-c (as written) on every axis it spans.
+std::string triangle_obj(const std::string& c) {
+  return "v -" + c + " -" + c + " 0\nv " + c + " -" + c + " 0\nv 0 " + c + " " + c + "\nf 1 2 3\n";
+}
+
+// `mesh_file` once, `transform` its JSON transform fields, seen from `camera` units away along z.
+std::string one_mesh_scene(const std::string& mesh_file, const std::string& transform, const std::string& camera) {
+  return R"({"meshes": {"tri": {"file": ")" + mesh_file + R"("}},
+  "instances": [{"mesh": "tri")" + (transform.empty() ? "" : ", " + transform) + R"(}],
+  "lights": [{"type": "directional", "direction": [0.3, 1, 0.5]}],
+  "camera": {"position": [0, 0, )" + camera + R"(], "look_at": [0, 0, 0]}})";
+}
+
+// Issue 27: coordinates whose squares overflow float made the bvh kernel loop for ever. Every
+// backend in every mode renders such a scene or refuses it with one line, in bounded time; beyond
+// the coordinate limit (1e9), always refused, naming the mesh file or the instance.
+TEST(Limits, HugeCoordinatesRenderOrAreRefusedByEveryBackend) {
+  const test::TempDir dir;
+  struct Case {
+    std::string name, scene;
+    std::vector<std::string> words;  // in the refusal; empty: within the limit, a render or a clean error
+  };
+  std::vector<Case> cases;
+  for (const std::string c : {"1e19", "1e30", "3e38"}) {
+    const std::string obj = dir.write("tri" + c + ".obj", triangle_obj(c)).string();
+    cases.push_back({c, one_mesh_scene(obj, "", "5"), {"meshes.tri", "tri" + c + ".obj", "limit of 1e+09"}});
+  }
+  const std::string small = dir.write("small.obj", triangle_obj("1e4")).string();
+  cases.push_back({"scale", one_mesh_scene(small, R"("scale": 1e6)", "1e8"), {"instances[0]", "limit of 1e+09"}});
+  cases.push_back({"translate", one_mesh_scene(small, R"("translate": [1e30, 0, 0])", "1e8"), {"instances[0]", "limit of 1e+09"}});
+  const std::string edge = dir.write("edge.obj", triangle_obj("1e9")).string();
+  cases.push_back({"at the limit", one_mesh_scene(edge, "", "1e9"), {}});
+  for (const Case& c : cases) {
+    const std::string scene = dir.write("scene.json", c.scene).string();
+    for (const char* backend : {"embree", "tri-aabb", "bvh", "vk-rt", "sdf-hash", "sdf-octree", "sdf-cpu"})
+      // Refused scenes in every mode; the scene at the limit, which renders, in whitted mode only
+      // (its closest and any-hit queries are the other modes'; each render compiles kernels).
+      for (const char* mode : {"primary", "shadow", "whitted"}) {
+        if (c.words.empty() && std::string(mode) != "whitted") continue;
+        const std::string args = "render --size 32x18 --frames 1 --warmup 0 --backend " + std::string(backend) + " --mode " +
+                                 mode + " --scene " + scene;
+        if (!c.words.empty()) {
+          expect_short_error(args, c.words, 400, 60);
+          continue;
+        }
+        const test::CommandResult r = run_limited(args, 120);
+        const std::string line = last_line(r.output);
+        EXPECT_TRUE(r.exit_code == 0 || (r.exit_code == 1 && line.rfind("sdfbench: error: ", 0) == 0))
+            << c.name << ": " << args << "\n" << r.output;
+        EXPECT_EQ(r.output.find("internal"), std::string::npos) << c.name << ": " << args << "\n" << r.output;
+      }
+  }
+}
+
+TEST(Limits, CoordinateLimitCoversTheCameraLightsAndFloor) {
+  const test::TempDir dir;
+  const std::string small = dir.write("small.obj", triangle_obj("1")).string();
+  std::string scene = one_mesh_scene(small, "", "2e9");
+  EXPECT_THROW(parse_scene_json(scene, dir.path() / "camera.json"), Error);
+  scene = one_mesh_scene(small, "", "5");
+  scene.replace(scene.find(R"("lights": [)"), 11, R"("lights": [{"type": "point", "position": [0, -1e10, 0]}, )");
+  try {
+    parse_scene_json(scene, dir.path() / "light.json");
+    ADD_FAILURE() << "a point light at 1e10 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("lights[0].position"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(parse_scene_json(one_mesh_scene(small, R"("translate": [9e8, 0, 0])", "5"), dir.path() / "ok.json"));
+}
+
+// The traversals' own iteration bounds report cut pixels (a TRUNCATED row, render and compare
+// fail), never a hang or a silent miss: a bvh traversal may make 2 node visits (the bunnies' BVHs
+// need more), an octree descent none (sdf-octree's thesis octrees are deeper).
+TEST(Limits, TraversalIterationBoundsReportCutPixels) {
+  const Scene scene = load_scene("thesis:bunny:10");
+  const FrameRequest request{64, 36, RenderMode::Shadow, false};
+  BvhRenderer bvh{BackendOptions{}};
+  bvh.prepare(scene);
+  EXPECT_EQ(bvh.render(request).truncated_pixels, 0u);
+  bvh.limit_visits_for_testing(2);
+  bvh.prepare(scene);
+  const FrameResult cut = bvh.render(request);
+  EXPECT_GT(cut.bound_pixels, 0u);
+  EXPECT_EQ(cut.bound_pixels, cut.truncated_pixels);
+  EXPECT_NE(truncation_error("bvh", cut).find("hard bound"), std::string::npos) << truncation_error("bvh", cut);
+
+  BackendOptions options;
+  const FrameResult whole = [&] {
+    auto octree = create_renderer("sdf-octree", options);
+    octree->prepare(scene);
+    return octree->render(request);
+  }();
+  EXPECT_EQ(whole.truncated_pixels, 0u);
+  options.kernel_defines = "#define SDF_MAX_OCTREE_DEPTH 0u\n";
+  auto shallow = create_renderer("sdf-octree", options);
+  shallow->prepare(scene);
+  const FrameResult descent = shallow->render(request);
+  EXPECT_GT(descent.bound_pixels, 0u);
+  EXPECT_NE(truncation_error("sdf-octree", descent).find("hard bound"), std::string::npos);
 }
 
 TEST(Limits, NumericFlagsHaveSaneRangesAndShortMessages) {

@@ -8,8 +8,10 @@
 // farther one pushed with its entry distance, and skipped when popped beyond the nearest hit.
 // Möller–Trumbore as tri-aabb, so hits agree with Embree to rounding. A level's stack holds
 // BVH_STACK_SIZE entries, defined by the renderer as the scene's deepest BVH: a traversal pushes
-// at most one entry per level it descends, so it never overflows (were it to, the pixel would be
-// counted as cut short, never silently wrong).
+// at most one entry per level it descends, so it never overflows. A traversal visits each node at
+// most once, so it stops after BVH_TOP_NODES (BVH_MESH_NODES: the largest mesh BVH's) visits
+// whatever the data holds. Running out of either would count the pixel as cut short, never
+// silently wrong.
 
 #include "frame_bindings.glsl"
 #include "triangle_tables.glsl"
@@ -17,10 +19,16 @@
 layout(binding = 11) uniform textureBuffer mesh_nodes;  // every mesh's BVH (root: TriInstance info.w), 4 texels a node
 layout(binding = 12) uniform textureBuffer top_nodes;   // the instances' BVH, root 0
 
-bool stack_overflow = false;
-#define TRAVERSAL_OVERFLOW stack_overflow
+bool traversal_cut = false;
+#define TRAVERSAL_OVERFLOW traversal_cut
 
 const float MISS = 3.4e38f;
+
+// Does the ray enter a child (its entry from box_entry) before tmax? MISS never does, also when
+// tmax is not below it.
+bool enters(float t, float tmax) {
+  return t <= tmax && t < MISS;
+}
 
 // Where the ray enters the box within [0, tmax] (o_inv = origin * inv_dir), or MISS.
 float box_entry(vec3 lo, vec3 hi, vec3 inv_dir, vec3 o_inv, float tmax) {
@@ -63,13 +71,17 @@ bool trace_mesh(uint inst, vec3 o, vec3 d, bool any, inout float tmax, inout uin
   uint sp = 0u;
   uint node = instances[inst].info.w;
   bool found = false;
-  while (true) {
+  for (uint visits = 0u;; ++visits) {
+    if (visits == BVH_MESH_NODES) {
+      traversal_cut = true;
+      break;
+    }
     int base = 4 * int(node);
     NodeVisit v = visit(texelFetch(mesh_nodes, base), texelFetch(mesh_nodes, base + 1), texelFetch(mesh_nodes, base + 2),
                         texelFetch(mesh_nodes, base + 3), inv_dir, o_inv, tmax);
     // Leaves now (they are never pushed); an inner child waits for the decision below.
     for (int k = 0; k < 2; ++k) {
-      if (v.count[k] == 0u || v.t[k] > tmax) continue;
+      if (v.count[k] == 0u || !enters(v.t[k], tmax)) continue;
       for (uint r = v.child[k]; r < v.child[k] + v.count[k]; ++r) {
         float t;
         vec2 bary;
@@ -83,7 +95,7 @@ bool trace_mesh(uint inst, vec3 o, vec3 d, bool any, inout float tmax, inout uin
       }
       v.t[k] = MISS;
     }
-    bool hit0 = v.t[0] <= tmax, hit1 = v.t[1] <= tmax;
+    bool hit0 = enters(v.t[0], tmax), hit1 = enters(v.t[1], tmax);
     if (hit0 && hit1) {
       uint near = v.t[0] <= v.t[1] ? 0u : 1u;
       if (sp < BVH_STACK_SIZE) {
@@ -91,7 +103,7 @@ bool trace_mesh(uint inst, vec3 o, vec3 d, bool any, inout float tmax, inout uin
         stack_t[sp] = v.t[1u - near];
         ++sp;
       } else {
-        stack_overflow = true;
+        traversal_cut = true;
       }
       node = v.child[near];
       continue;
@@ -104,7 +116,7 @@ bool trace_mesh(uint inst, vec3 o, vec3 d, bool any, inout float tmax, inout uin
     bool next = false;
     while (sp > 0u && !next) {
       --sp;
-      next = stack_t[sp] <= tmax;
+      next = enters(stack_t[sp], tmax);
       node = stack_node[sp];
     }
     if (!next) break;
@@ -124,12 +136,16 @@ bool trace_scene(Ray ray, bool any, inout float tmax, out uint inst, out uint sl
   inst = NO_INSTANCE;
   slot = 0u;
   uv = vec2(0.0f);
-  while (true) {
+  for (uint visits = 0u;; ++visits) {
+    if (visits == BVH_TOP_NODES) {
+      traversal_cut = true;
+      break;
+    }
     int base = 4 * int(node);
     NodeVisit v = visit(texelFetch(top_nodes, base), texelFetch(top_nodes, base + 1), texelFetch(top_nodes, base + 2),
                         texelFetch(top_nodes, base + 3), inv_dir, o_inv, tmax);
     for (int k = 0; k < 2; ++k) {
-      if (v.count[k] == 0u || v.t[k] > tmax) continue;
+      if (v.count[k] == 0u || !enters(v.t[k], tmax)) continue;
       uint i = v.child[k];  // a leaf: one instance
       vec3 o = vec3(instances[i].world_to_object * vec4(ray.origin, 1.0f));
       vec3 d = vec3(instances[i].world_to_object * vec4(ray.dir, 0.0f));
@@ -140,7 +156,7 @@ bool trace_scene(Ray ray, bool any, inout float tmax, out uint inst, out uint sl
       }
       v.t[k] = MISS;
     }
-    bool hit0 = v.t[0] <= tmax, hit1 = v.t[1] <= tmax;
+    bool hit0 = enters(v.t[0], tmax), hit1 = enters(v.t[1], tmax);
     if (hit0 && hit1) {
       uint near = v.t[0] <= v.t[1] ? 0u : 1u;
       if (sp < BVH_STACK_SIZE) {
@@ -148,7 +164,7 @@ bool trace_scene(Ray ray, bool any, inout float tmax, out uint inst, out uint sl
         stack_t[sp] = v.t[1u - near];
         ++sp;
       } else {
-        stack_overflow = true;
+        traversal_cut = true;
       }
       node = v.child[near];
       continue;
@@ -160,7 +176,7 @@ bool trace_scene(Ray ray, bool any, inout float tmax, out uint inst, out uint sl
     bool next = false;
     while (sp > 0u && !next) {
       --sp;
-      next = stack_t[sp] <= tmax;
+      next = enters(stack_t[sp], tmax);
       node = stack_node[sp];
     }
     if (!next) break;

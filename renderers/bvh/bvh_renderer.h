@@ -33,6 +33,9 @@ class BvhRenderer : public Renderer {
   // For tests: a stack of `entries` (fewer than the BVH needs) from the next prepare on, to show
   // that an overflow is reported (as cut pixels), never a silent miss. 0: as deep as the BVH.
   void limit_stack_for_testing(uint32_t entries) { stack_limit_ = entries; }
+  // For tests: at most `visits` node visits per traversal of either level (fewer than its nodes),
+  // to show that reaching the iteration bound is reported as cut pixels. 0: the node counts.
+  void limit_visits_for_testing(uint32_t visits) { visit_limit_ = visits; }
 
  private:
   VulkanContext context_;
@@ -43,6 +46,8 @@ class BvhRenderer : public Renderer {
   Depths depths_;
   uint32_t stack_size_ = 1;
   uint32_t stack_limit_ = 0;
+  Depths visits_{1, 1};  // node visits a traversal may make (BVH_TOP_NODES, BVH_MESH_NODES)
+  uint32_t visit_limit_ = 0;
   TileKernelFactory kernels_;  // bvh.comp; the runner's factory adds BVH_STACK_SIZE
   VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
 };

@@ -49,6 +49,13 @@ struct SdfParams {
 // epsilon floor.
 #define SDF_FAR_TRIANGLE 0xfffffffeu
 
+// The deepest octree below a hash cell (--octree-depth's limit, sdf::validate): the kernels'
+// descent stops there whatever the node words hold, and the pixel is counted as cut short.
+// (A test defines it smaller to see that reported.)
+#ifndef SDF_MAX_OCTREE_DEPTH
+#define SDF_MAX_OCTREE_DEPTH 16u
+#endif
+
 // --hit exact: the most mesh-grid cells one crossing search walks (a bound on the loop; a
 // segment of two hit epsilons crosses a few).
 #define SDF_EXACT_MAX_CELLS 512u

@@ -140,8 +140,13 @@ float mesh_distance(uint mesh, vec3 p, out uint triangle) {
   return sqrt(best);
 }
 
+// Set when a descent went deeper than SDF_MAX_OCTREE_DEPTH (the node words are not a tree of
+// at most that depth): the pixel is cut short (TRAVERSAL_OVERFLOW in sdf_trace.comp).
+bool sdf_cut = false;
+
 // The node word of the octree leaf holding p (inside the hash box): hash cell, then descent
-// (thesis Algorithm 5.7). `zero` is 0 (SDF_REPEAT_LOCATE's copies pass SDF_ZERO multiples).
+// (thesis Algorithm 5.7), or, past SDF_MAX_OCTREE_DEPTH levels, sdf_cut and the first leaf list.
+// `zero` is 0 (SDF_REPEAT_LOCATE's copies pass SDF_ZERO multiples).
 // (Keeping the last leaf and skipping the descent while p stays in it was measured 8 % slower on
 // lavapipe: the state it keeps costs more than the fetches it saves.)
 uint leaf_word(vec3 p, int zero, out vec3 node_lo, out vec3 node_hi) {
@@ -153,7 +158,11 @@ uint leaf_word(vec3 p, int zero, out vec3 node_lo, out vec3 node_hi) {
   node_lo = lo + vec3(c) * cell_size;
   node_hi = lo + vec3(c + 1u) * cell_size;
   uint word = SDF_FETCH(hash_cells, int(cell) + zero).x;
-  while ((word & SDF_LEAF_BIT) == 0u) {
+  for (uint level = 0u; (word & SDF_LEAF_BIT) == 0u; ++level) {
+    if (level == SDF_MAX_OCTREE_DEPTH) {
+      sdf_cut = true;
+      return SDF_LEAF_BIT;
+    }
     vec3 mid = 0.5f * (node_lo + node_hi);
     bvec3 upper = greaterThanEqual(p, mid);
     node_lo = mix(node_lo, mid, upper);

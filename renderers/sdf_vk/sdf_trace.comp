@@ -9,6 +9,7 @@
 
 #include "frame_bindings.glsl"
 #include "sdf_scene_distance.glsl"
+#define TRAVERSAL_OVERFLOW sdf_cut
 #include "ray_box.glsl"
 #include "ray_triangle.glsl"
 
@@ -82,6 +83,7 @@ uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistan
     vec3 p = clamp(ray.origin + t * ray.dir, lo, hi);
     vec3 leaf_lo, leaf_hi;
     uint word = find_leaf(p, leaf_lo, leaf_hi);
+    if (sdf_cut) return MARCH_LEFT;  // the pixel is reported cut short
 #ifdef SDF_CELL_BOUND
     // No surface lies within `bound` of the leaf: the ray crosses it and goes the bound beyond its
     // far side (still that far from any surface) without evaluating an instance.

@@ -19,6 +19,7 @@ namespace sdfbench::shading {
 // The GLSL #defines as typed C++ constants.
 inline constexpr uint32_t NO_INSTANCE_VALUE = NO_INSTANCE;
 inline constexpr uint32_t FLOOR_INSTANCE_VALUE = FLOOR_INSTANCE;
+inline constexpr uint32_t CUT_TRAVERSAL_BOUND_BIT = CUT_TRAVERSAL_BOUND;
 
 // One pixel's work in an instrumented frame, indexed by COUNTER_* (the CPU tracers add to it).
 using PixelCounts = std::array<uint32_t, COUNTER_KINDS>;

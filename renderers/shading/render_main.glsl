@@ -72,8 +72,9 @@ bool has_implicits() {
 
 #include "shading.glsl"
 
-// A backend whose traversal can run out of a fixed resource (bvh: its stacks) defines
-// TRAVERSAL_OVERFLOW as that flag: the pixel is then counted as cut short, never silently wrong.
+// A backend whose traversal can run out of a fixed resource or reach its hard iteration bound
+// (bvh: its stacks, one visit per node; sdf: the octree's depth) defines TRAVERSAL_OVERFLOW as
+// that flag: the pixel is then counted as cut short, never silently wrong.
 #ifndef TRAVERSAL_OVERFLOW
 #define TRAVERSAL_OVERFLOW false
 #endif
@@ -123,12 +124,13 @@ void main() {
   trace_ray(ray, s, aov);
   if (SHADING_MODE == MODE_WHITTED && WHITTED_PASSES == 0)
     while (s.counters.x > 0u) trace_ray(pop_ray(s), s, aov);
-  bool cut = loop_limit_hit() || TRAVERSAL_OVERFLOW;
+  // ids.w: why the pixel was cut short, CUT_LOOP_CAP | CUT_TRAVERSAL_BOUND (0: not).
+  uint cut = (loop_limit_hit() ? CUT_LOOP_CAP : 0u) | (TRAVERSAL_OVERFLOW ? CUT_TRAVERSAL_BOUND : 0u);
   if (first) {
     out_aov[index].normal_depth = vec4(aov.normal, aov.depth);
-    out_aov[index].ids = uvec4(aov.instance, aov.prim, 0u, cut ? 1u : 0u);
-  } else if (cut) {
-    out_aov[index].ids.w = 1u;
+    out_aov[index].ids = uvec4(aov.instance, aov.prim, 0u, cut);
+  } else if (cut != 0u) {
+    out_aov[index].ids.w |= cut;
   }
 #if COUNTERS
   store_counters(index, first);

@@ -124,8 +124,14 @@ struct PixelState {
 // Per-pixel output written by the kernels: the AOVs of the primary hit.
 struct GpuAov {
   vec4 normal_depth;  // xyz: shading normal facing the camera, w: ray parameter t (0: miss)
-  uvec4 ids;          // x: instance id, y: primitive id, z: rays traced for this pixel, w: 1: cut short (render_main.glsl)
+  uvec4 ids;          // x: instance id, y: primitive id, z: rays traced for this pixel, w: CUT_* bits (render_main.glsl)
 };
+
+// Why a pixel was cut short (GpuAov ids.w; 0: it was not): the driver's per-invocation loop
+// limit (README "The loop limit"), or the kernel's own hard bound on a traversal (a stack, an
+// iteration count).
+#define CUT_LOOP_CAP 1u
+#define CUT_TRAVERSAL_BOUND 2u
 
 struct Ray {
   vec3 origin;

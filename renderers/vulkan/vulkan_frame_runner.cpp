@@ -181,13 +181,17 @@ FrameResult VulkanFrameRunner::run(const FrameRequest& request) {
   for (uint32_t y = 0; y < request.height; y += kTileSize)
     for (uint32_t x = 0; x < request.width; x += kTileSize) tiles.emplace_back(x, y, 0u, kLoopProbeTrips);
   if (!passes) submit(tiles, result);
+  // A pass traces one ray of each pixel's tree, which holds at most 2^(depth + 1) - 1 rays.
+  const uint32_t max_passes = (2u << std::min(request.max_depth.value_or(scene_->render.max_depth), MAX_DEPTH_LIMIT)) - 1u;
   for (size_t i = 0; passes && i < tiles.size(); ++i) {
-    for (uint32_t pass = 0, pending = 1; pending != 0; ++pass) {
+    uint32_t pending = 1;
+    for (uint32_t pass = 0; pending != 0 && pass < max_passes; ++pass) {
       pending = 0;
       states_.write(&pending, sizeof(pending));
       submit({glm::uvec4(tiles[i].x, tiles[i].y, pass, kLoopProbeTrips)}, result);
       states_.read(&pending, sizeof(pending));
     }
+    if (pending != 0) throw Error("internal: whitted passes did not finish within " + std::to_string(max_passes));
   }
 
   const size_t pixels = static_cast<size_t>(request.width) * request.height;
@@ -195,7 +199,8 @@ FrameResult VulkanFrameRunner::run(const FrameRequest& request) {
   aov_.read(aov.data(), pixels * sizeof(shading::GpuAov));
   for (const shading::GpuAov& a : aov) {
     result.rays += a.ids.z;
-    result.truncated_pixels += a.ids.w;
+    result.truncated_pixels += a.ids.w != 0u;
+    result.bound_pixels += (a.ids.w & shading::CUT_TRAVERSAL_BOUND_BIT) != 0u;
   }
   std::vector<uint32_t> counts;
   if (request.counters) {
