@@ -70,6 +70,7 @@ void check_obj_text(std::string_view text, const std::string& where) {
     const std::string_view line = text.substr(pos, end - pos);
     pos = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
     ++line_number;
+    if (line.find('\0') != std::string_view::npos) fail("a NUL byte: not a text file");  // read_input_file refuses it too
     size_t first = 0;
     while (first < line.size() && is_blank(line[first])) ++first;
     if (line.size() < first + 2 || !is_blank(line[first + 1])) continue;  // only "v ..." and "f ..." lines

@@ -65,7 +65,7 @@ Format format_of(std::span<const std::byte> bytes) {
   if (stbi_is_hdr_from_memory(data_of(bytes), length_of(bytes)))
     throw Error("Radiance HDR images are not read (libstb's decoder does not stop on every damaged file); convert it to EXR or PNG");
   const std::pair<const char*, const char*> unread[] = {
-      {"GIF8", "GIF"}, {"8BPS", "Photoshop PSD"}, {"\x53\x80\xf6\x34", "Softimage PIC"}, {"P5", "PNM"}, {"P6", "PNM"}};
+      {"GIF8", "GIF"}, {"8BPS", "PSD"}, {"\x53\x80\xf6\x34", "PIC"}, {"P5", "PNM"}, {"P6", "PNM"}};
   for (const auto& [signature, name] : unread)
     if (starts_with(bytes, signature))
       throw Error(std::string(name) + " images are not read (textures are PNG, JPEG, BMP, TGA or EXR)");
