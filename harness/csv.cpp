@@ -50,7 +50,9 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
     field.clear();
     field_started = false;
   };
-  for (size_t i = 0; i < text.size(); ++i) {
+  // A UTF-8 byte-order mark (spreadsheets write one) is not part of the first column's name.
+  const size_t start = text.starts_with("\xef\xbb\xbf") ? 3 : 0;
+  for (size_t i = start; i < text.size(); ++i) {
     const char c = text[i];
     if (quoted) {
       if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {

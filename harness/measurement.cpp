@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -109,7 +110,11 @@ size_t row_run_index(const CsvTable& table, size_t row, const std::string& sourc
   const std::string& text = table.rows.at(row)[table.column("run_index")];
   size_t index = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), index);
-  if (text.empty() || ec != std::errc() || end != text.data() + text.size())
+  const bool digits = !text.empty() && end == text.data() + text.size();
+  if (digits && ec == std::errc::result_out_of_range)
+    throw Error("'" + source + "' row " + std::to_string(row + 1) + ": run_index '" + text +
+                "' is not a non-negative integer up to " + std::to_string(std::numeric_limits<size_t>::max()) + " (out of range)");
+  if (!digits || ec != std::errc())
     throw Error("'" + source + "' row " + std::to_string(row + 1) + ": run_index '" + text +
                 "' is not a non-negative integer");
   return index;

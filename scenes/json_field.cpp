@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "scenes/error.h"
+#include "util/input_file.h"
 
 namespace sdfbench {
 namespace {
@@ -25,8 +26,10 @@ std::string format_number(double v) {
 
 }  // namespace
 
+// Keys and names quoted in the message may hold any character: escaped, so that a NUL does not
+// end the message nor a newline split it.
 void JsonField::fail(const std::string& what) const {
-  throw Error(file_ + ": " + (path_.empty() ? std::string("(top level)") : short_path(path_)) + ": " + what);
+  throw Error(printable(file_ + ": " + (path_.empty() ? std::string("(top level)") : short_path(path_)) + ": " + what));
 }
 
 JsonField JsonField::at(const char* key) const {

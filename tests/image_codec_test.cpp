@@ -1,6 +1,7 @@
 // The binary's image codecs (util/image_codec.h) and colour metrics (harness/image_agreement.h)
 // against OpenImageIO, an independent reader and comparer.
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include <OpenImageIO/imagebuf.h>
@@ -124,7 +125,8 @@ TEST(ImageCodec, AovChannelsReadBackByName) {
   }
 }
 
-// Damaged input is an Error naming the image, never a crash or a hang: truncated files of each format,
+// Damaged input is an Error naming the image, never a crash or a hang (nor an image libstb made up
+// from the zeros it reads past the end): truncated files of each format,
 // random bytes, and an EXR whose header declares a data window beyond the size limit.
 TEST(ImageCodec, DamagedFilesAreErrorsNamingTheImage) {
   test::TempDir dir;
@@ -138,9 +140,10 @@ TEST(ImageCodec, DamagedFilesAreErrorsNamingTheImage) {
       const std::span<const std::byte> cut(bytes.data(), keep);
       try {
         const DecodedImage image = decode_image(cut, "image 'd'");
-        EXPECT_TRUE(keep == bytes.size() || std::string(ext) != "exr") << "a truncated EXR decoded";
+        EXPECT_EQ(keep, bytes.size()) << "a truncated file decoded";
         EXPECT_EQ(image.pixels.size(), size_t(image.header.width) * image.header.height * image.header.channels);
       } catch (const Error& e) {
+        EXPECT_TRUE(keep < bytes.size() || std::string(ext) == "hdr") << e.what();
         EXPECT_NE(std::string(e.what()).find("cannot read image 'd'"), std::string::npos) << e.what();
       }
     }
@@ -151,6 +154,95 @@ TEST(ImageCodec, DamagedFilesAreErrorsNamingTheImage) {
   EXPECT_THROW(decode_image(noise, "image 'n'"), Error);
   noise[0] = std::byte(0x76), noise[1] = std::byte(0x2f), noise[2] = std::byte(0x31), noise[3] = std::byte(0x01);  // EXR magic
   EXPECT_THROW(decode_image(noise, "image 'n'"), Error);
+}
+
+std::vector<std::byte> as_bytes(const std::string& s) {
+  const auto* p = reinterpret_cast<const std::byte*>(s.data());
+  return {p, p + s.size()};
+}
+
+std::string decode_error(const std::vector<std::byte>& bytes) {
+  try {
+    decode_image(bytes, "image 'x'");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::vector<std::byte> encoded(uint32_t w, uint32_t h, ImageFormat format, uint32_t seed) {
+  std::mt19937 rng(seed);
+  FloatImage image{w, h, {"R", "G", "B"}, {}};
+  for (size_t i = 0; i < size_t(w) * h * 3; ++i) image.pixels.push_back(float(rng() % 256) / 255.0f);
+  const std::vector<unsigned char> bytes = encode_image(image, format, "'x'");
+  const auto* p = reinterpret_cast<const std::byte*>(bytes.data());
+  return {p, p + bytes.size()};
+}
+
+// An uncompressed 24-bit TGA (libstb's writer compresses).
+std::vector<std::byte> raw_tga(uint32_t w, uint32_t h) {
+  std::string t(18, '\0');
+  t[2] = 2;  // true colour, uncompressed
+  t[12] = char(w), t[13] = char(w >> 8), t[14] = char(h), t[15] = char(h >> 8), t[16] = 24;
+  for (uint32_t i = 0; i < w * h * 3; ++i) t += char(i * 7);
+  return as_bytes(t);
+}
+
+// GIF and PNM decode in libstb, but are no documented texture format; each is refused by name.
+TEST(ImageCodec, UndocumentedFormatsAreRefusedByName) {
+  const std::string gif("GIF89a\x01\x00\x01\x00\x80\x00\x00\xff\xff\xff\x00\x00\x00,\x00\x00\x00\x00\x01\x00\x01\x00\x00\x02\x02" "D\x01\x00;", 35);
+  const std::string pnm = "P6\n2 1\n255\n" + std::string(6, '\x80');
+  for (const auto& [bytes, name] : {std::pair{gif, "GIF"}, std::pair{pnm, "PNM"}, std::pair{std::string("8BPS") + std::string(40, '\1'), "PSD"}}) {
+    const std::string e = decode_error(as_bytes(bytes));
+    EXPECT_NE(e.find(std::string("cannot read image 'x': ") + name), std::string::npos) << e;
+    EXPECT_NE(e.find("not read (textures are PNG, JPEG, BMP, TGA or EXR)"), std::string::npos) << e;
+  }
+}
+
+// BMP and TGA have no end marker, and libstb reads zeros past the end: a truncated file (every
+// cut) or a header claiming more pixels than the file holds is an error, before decoding where
+// the header says enough.
+TEST(ImageCodec, TruncatedBmpAndTgaAreErrors) {
+  const std::vector<std::pair<std::string, std::vector<std::byte>>> files = {
+      {"bmp", encoded(13, 7, ImageFormat::bmp, 1)}, {"rle tga", encoded(13, 7, ImageFormat::tga, 2)}, {"raw tga", raw_tga(13, 7)}};
+  for (const auto& [name, bytes] : files) {
+    SCOPED_TRACE(name);
+    EXPECT_EQ(decode_image(bytes, "image 'x'").pixels.size(), 13u * 7 * 3);
+    const size_t header = name == "bmp" ? 54 : 18;
+    for (size_t keep = 0; keep < bytes.size(); ++keep) {
+      const std::string e = decode_error({bytes.begin(), bytes.begin() + long(keep)});
+      if (keep < header)  // a cut header: any error
+        EXPECT_NE(e.find("cannot read image 'x': "), std::string::npos) << keep << ": " << e;
+      else
+        EXPECT_NE(e.find("cannot read image 'x': truncated"), std::string::npos) << keep << " of " << bytes.size() << ": " << e;
+    }
+  }
+  // 100 bytes claiming 4096x4096 are refused from the header alone (read_image_header).
+  for (std::vector<std::byte> bytes : {encoded(2, 2, ImageFormat::bmp, 3), raw_tga(2, 2), encoded(2, 2, ImageFormat::tga, 4)}) {
+    if (bytes[0] == std::byte{'B'})
+      bytes[18] = bytes[22] = std::byte{0}, bytes[19] = bytes[23] = std::byte{0x10};
+    else
+      bytes[12] = bytes[14] = std::byte{0}, bytes[13] = bytes[15] = std::byte{0x10};
+    bytes.resize(100);
+    try {
+      read_image_header(bytes, "image 'x'");
+      ADD_FAILURE() << "a 100-byte file claiming 4096x4096 passed";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("4096x4096 pixels take at least"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// A negative BMP height means rows stored top-down: decoded, as the same image.
+TEST(ImageCodec, TopDownBmpDecodes) {
+  const std::vector<std::byte> up = encoded(5, 3, ImageFormat::bmp, 5);
+  std::vector<std::byte> down = up;
+  const uint32_t offset = std::to_integer<uint32_t>(up[10]), stride = 16;  // 5 pixels * 3 bytes, padded to 4
+  for (uint32_t row = 0; row < 3; ++row)
+    std::copy_n(up.begin() + offset + row * stride, stride, down.begin() + offset + (2 - row) * stride);
+  const int32_t height = -3;
+  std::memcpy(down.data() + 22, &height, 4);
+  EXPECT_EQ(decode_image(down, "image 'x'").pixels, decode_image(up, "image 'x'").pixels);
 }
 
 TEST(ImageCodec, FormatsByExtension) {

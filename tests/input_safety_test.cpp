@@ -2,9 +2,12 @@
 // allocate gigabytes, OBJ numbers tinyobjloader reads as 0, JSON that nlohmann refuses with an
 // exception. Each must be one clear error line naming the file and what is wrong, exit 1,
 // quickly (every command runs under a timeout, so a hang fails instead of blocking the suite).
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -16,6 +19,8 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include "harness/csv.h"
+#include "harness/measurement.h"
 #include "harness/thesis_tables.h"
 #include "renderers/sdf/sdf_cache.h"
 #include "scenes/error.h"
@@ -42,6 +47,30 @@ TimedRun run_timed(const std::string& args) {
   r.exit_code = run.exit_code;
   r.output = run.output;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+// `args` as run_timed, and the peak resident memory of the command (wait4's ru_maxrss covers
+// the shell, `timeout` and sdfbench below it), for inputs that used to cost gigabytes.
+TimedRun run_measured(const std::string& args, long& peak_mib) {
+  const fs::path out = fs::temp_directory_path() / ("sdfbench_measured_" + std::to_string(::getpid()));
+  const std::string line = "timeout 20 " + std::string(SDFBENCH_BINARY) + " " + args + " > '" + out.string() + "' 2>&1";
+  const auto start = std::chrono::steady_clock::now();
+  TimedRun r;
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", line.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  int status = 0;
+  struct rusage usage {};
+  EXPECT_EQ(::wait4(pid, &status, 0, &usage), pid);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(out);
+  r.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  fs::remove(out);
+  peak_mib = usage.ru_maxrss / 1024;
   return r;
 }
 
@@ -267,14 +296,108 @@ TEST(ObjInput, IndicesThatDoNotFitAreErrorsNotWrapped) {
 }
 
 TEST(ObjInput, TriangleCountIsBoundedBeforeParsing) {
-  // One face of 8 Mi + 3 corners (17 MB of text) would be 8 Mi + 1 triangles.
-  std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf";
-  text.reserve(text.size() + 2 * ((1u << 23) + 3) + 1);
-  for (uint32_t i = 0; i < (1u << 23) + 3; ++i) text += " 1";
+  // 33 027 faces of 256 corners (17 MB of text) would be 8 Mi + 250 triangles.
+  std::string face = "f";
+  for (int i = 0; i < 256; ++i) face += " 1";
+  std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  text.reserve(text.size() + 33027 * (face.size() + 1));
+  for (int i = 0; i < 33027; ++i) text += face + "\n";
   const auto start = std::chrono::steady_clock::now();
   const std::string e = obj_error(text + "\n");
   EXPECT_NE(e.find("more than 8388608 triangles (the limit for an OBJ)"), std::string::npos) << e.substr(0, 300);
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
+// tinyobjloader's triangulation is quadratic in a face's corners (400 000 took minutes): a face
+// is refused past 256 corners by the linear pre-scan, at once; a 256-gon loads.
+TEST(ObjInput, FaceCornersAreBoundedBeforeParsing) {
+  std::string circle;
+  for (int i = 0; i < 256; ++i)
+    circle += "v " + std::to_string(std::cos(i * 0.0245437)) + " " + std::to_string(std::sin(i * 0.0245437)) + " 0\n";
+  std::string face = "f";
+  for (int i = 1; i <= 256; ++i) face.append(" ").append(std::to_string(i));
+  EXPECT_EQ(parse_obj(circle + face + "\n", "ok.obj", "ok").triangle_count(), 254u);
+  EXPECT_NE(obj_error(circle + face + " 1\n").find("OBJ 'bad.obj' line 257: a face has more than 256 vertices"), std::string::npos);
+  std::string huge = circle + "f";
+  for (int i = 0; i < 400000; ++i) huge.append(" ").append(std::to_string(i % 256 + 1));
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_NE(obj_error(huge + "\n").find("line 257: a face has more than 256 vertices"), std::string::npos);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+}
+
+// A text input (OBJ, scene, CSV) with a NUL byte is binary: refused in the first chunk read, so
+// 500 MiB of zeros (a sparse file: the test itself costs nothing) is quick and small, not the
+// 2 GB it took to parse; also a NUL in the middle of an OBJ passed to parse_obj.
+TEST_F(InputSafety, TextFilesOfZerosAreRefusedFromTheirFirstBytes) {
+  const fs::path zeros = dir_.path() / "zeros.obj";
+  { std::ofstream touch(zeros); }
+  fs::resize_file(zeros, 500ull << 20);
+  long peak_mib = 0;
+  const TimedRun r = run_measured(kRender + "--scene " + scene_with(zeros.string()).string(), peak_mib);
+  SCOPED_TRACE(r.output);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.output.rfind("sdfbench: error: ", 0), 0u);
+  EXPECT_EQ(r.output.find('\n'), r.output.size() - 1);
+  EXPECT_NE(r.output.find("OBJ '" + zeros.string() + "' is not a text file: a NUL byte at offset 0"), std::string::npos);
+  EXPECT_LT(r.seconds, 5.0);
+  EXPECT_LT(peak_mib, 300);  // sdfbench's own libraries are ~100 MiB; reading the file was 2 GB
+  const fs::path csv = dir_.write("late.csv", "run_index\n" + std::string(3u << 20, '1') + std::string(1, '\0') + "\n");
+  const std::string e = error_of([&] { read_csv(csv); });
+  EXPECT_NE(e.find("CSV '" + csv.string() + "' is not a text file: a NUL byte at offset " + std::to_string(10 + (3u << 20))),
+            std::string::npos) << e;
+  EXPECT_NE(obj_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n#" + std::string(1, '\0') + "\n").find("line 5: a NUL byte"),
+            std::string::npos);
+}
+
+// An SDF cache is checked by its header before its body is read: a 4 GiB file (sparse) of zeros
+// is refused for its magic, one with a real cache's header for its declared size, both at once.
+TEST_F(InputSafety, HugeCacheIsRefusedByItsHeaderBeforeItsBody) {
+  const fs::path scene = dir_.write("implicit.json", R"({
+    "implicits": [{"shape": {"type": "ellipsoid", "radii": [1, 1, 1]}}],
+    "camera": {"position": [0, 1, 4], "look_at": [0, 0, 0]}})");
+  const fs::path real = dir_.path() / "real.sdfcache";
+  ASSERT_EQ(run_timed("build --scene " + scene.string() + " --cache " + real.string()).exit_code, 0);
+  std::string header(88, '\0');
+  std::ifstream(real, std::ios::binary).read(header.data(), 88);
+  const uint64_t size = (4ull << 30) - 8;  // just under the limit
+  for (const bool real_header : {false, true}) {
+    const fs::path cache = dir_.path() / "big.sdfcache";
+    std::ofstream(cache, std::ios::binary) << (real_header ? header : std::string("NOTACACH"));
+    fs::resize_file(cache, size);
+    long peak_mib = 0;
+    const TimedRun r = run_measured("render --backend sdf-cpu --size 16x9 --frames 1 --warmup 0 --scene " + scene.string() +
+                                        " --cache " + cache.string(),
+                                    peak_mib);
+    SCOPED_TRACE(r.output);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.output.find('\n'), r.output.size() - 1);
+    EXPECT_NE(r.output.find(real_header ? "header says " + std::to_string(fs::file_size(real)) + " bytes, file has " +
+                                              std::to_string(size)
+                                        : "'" + cache.string() + "' is not an sdfbench SDF cache (bad magic)"),
+              std::string::npos);
+    EXPECT_LT(r.seconds, 5.0);
+    EXPECT_LT(peak_mib, 300);  // reading it was 4 GB and 15 s
+  }
+}
+
+// Spreadsheets start a CSV with a UTF-8 byte-order mark; a run_index beyond 64 bits says its range.
+TEST(CsvInput, ByteOrderMarkAndRunIndexRange) {
+  const CsvTable t = parse_csv("\xef\xbb\xbfrun_index,x\n7,a\n18446744073709551616,b\n", "bom.csv");
+  EXPECT_EQ(row_run_index(t, 0, "bom.csv"), 7u);
+  const std::string e = error_of([&] { row_run_index(t, 1, "bom.csv"); });
+  EXPECT_NE(e.find("run_index '18446744073709551616' is not a non-negative integer up to 18446744073709551615 (out of range)"),
+            std::string::npos) << e;
+}
+
+// A NUL in a JSON name would end the message at it (what() is a C string): escaped, like a newline.
+TEST(SceneInput, NulInANameIsEscapedInTheError) {
+  const std::string e = error_of([&] {
+    parse_scene_json(R"({"meshes": {"a\u0000b": {"builtin": "sphere"}}, "instances": [{"mesh": "c"}],
+      "camera": {"position": [0, 1, 4], "look_at": [0, 0, 0]}})", "bad.json");
+  });
+  EXPECT_NE(e.find("unknown mesh 'c' (declared: a\\x00b)"), std::string::npos) << e;
+  const std::string key = error_of([&] { parse_scene_json(R"({"came\u0000ra": 1})", "bad.json"); });
+  EXPECT_NE(key.find("bad.json: came\\x00ra: unknown field"), std::string::npos) << key;
 }
 
 TEST_F(InputSafety, ObjErrorsReachTheCommandLineWithFieldFileAndLine) {

@@ -38,8 +38,9 @@ struct DecodedImage {
 };
 
 // Both throw Error("cannot read <name>: <reason>") for a file no codec can read. The format is
-// found from the bytes, not the name: PNG, JPEG, BMP, TGA or EXR (its R, G, B or Y channels);
-// Radiance HDR is refused (see stb_codec.cpp).
+// found from the bytes' signature, not the name: PNG, JPEG, BMP, TGA or EXR (its R, G, B or Y
+// channels); Radiance HDR, GIF, PSD, PIC and PNM (which libstb would decode) are refused (see
+// stb_codec.cpp), and so is a BMP or TGA shorter than its header's size needs, or truncated.
 ImageHeader read_image_header(std::span<const std::byte> bytes, const std::string& name);
 DecodedImage decode_image(std::span<const std::byte> bytes, const std::string& name);
 

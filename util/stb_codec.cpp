@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstring>
 #include <memory>
+#include <string_view>
+#include <utility>
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -21,6 +24,7 @@ int length_of(std::span<const std::byte> bytes) {
   return static_cast<int>(bytes.size());
 }
 
+// After a libstb call that failed (its reason is only fresh then).
 [[noreturn]] void fail() {
   const char* reason = stbi_failure_reason();
   const std::string what = "not a readable PNG, JPEG, BMP, TGA or EXR image";
@@ -43,26 +47,95 @@ DecodedImage copy_scaled(T* raw, ImageHeader header, bool linear, float scale) {
   return image;
 }
 
-}  // namespace
+enum class Format { png, jpeg, bmp, tga };
 
-ImageHeader stb_header(std::span<const std::byte> bytes) {
+bool starts_with(std::span<const std::byte> bytes, std::string_view signature) {
+  return bytes.size() >= signature.size() && std::memcmp(bytes.data(), signature.data(), signature.size()) == 0;
+}
+
+// The format by its signature. libstb tries every decoder it has (GIF, PSD, PIC, PNM too) on any
+// bytes; only the documented ones reach it. TGA has no signature: what is left is TGA if
+// libstb's TGA header test accepts it, the only test left that can.
+Format format_of(std::span<const std::byte> bytes) {
+  if (starts_with(bytes, "\x89PNG\r\n\x1a\n")) return Format::png;
+  if (starts_with(bytes, "\xff\xd8")) return Format::jpeg;
+  if (starts_with(bytes, "BM")) return Format::bmp;
   // libstb's Radiance HDR decoder loops for ever on some truncated files (found by
   // tests/image_codec_test.cpp), so HDR images are written but never read.
   if (stbi_is_hdr_from_memory(data_of(bytes), length_of(bytes)))
     throw Error("Radiance HDR images are not read (libstb's decoder does not stop on every damaged file); convert it to EXR or PNG");
+  const std::pair<const char*, const char*> unread[] = {
+      {"GIF8", "GIF"}, {"8BPS", "PSD"}, {"\x53\x80\xf6\x34", "PIC"}, {"P5", "PNM"}, {"P6", "PNM"}};
+  for (const auto& [signature, name] : unread)
+    if (starts_with(bytes, signature))
+      throw Error(std::string(name) + " images are not read (textures are PNG, JPEG, BMP, TGA or EXR)");
+  return Format::tga;
+}
+
+uint64_t le(std::span<const std::byte> bytes, size_t at, int count) {
+  uint64_t v = 0;
+  for (int k = count - 1; k >= 0; --k) v = (v << 8) | (at + k < bytes.size() ? std::to_integer<uint64_t>(bytes[at + k]) : 0);
+  return v;
+}
+
+// The fewest bytes a BMP or TGA of this size can be, from its header. libstb reads zeros past the
+// end of the data, so a truncated file, or 100 bytes claiming 4096x4096, would decode to an image
+// it mostly invented. PNG and JPEG decoders fail on missing data themselves.
+uint64_t least_bytes(Format format, std::span<const std::byte> bytes, uint64_t width, uint64_t height) {
+  if (format == Format::bmp) {  // rows of width * bits, padded to 4 bytes, from the data offset
+    const uint64_t header_bytes = le(bytes, 14, 4), bits = le(bytes, header_bytes == 12 ? 24 : 28, 2);
+    return le(bytes, 10, 4) + (width * bits + 31) / 32 * 4 * height;
+  }
+  if (format == Format::tga) {  // 18-byte header, image id, colour map, then pixels, raw or RLE
+    const uint64_t pixel_bytes = (le(bytes, 16, 1) + 7) / 8;
+    const uint64_t palette = le(bytes, 1, 1) == 1 ? le(bytes, 5, 2) * ((le(bytes, 7, 1) + 7) / 8) : 0;
+    const uint64_t pixels = width * height, start = 18 + le(bytes, 0, 1) + palette;
+    const bool rle = le(bytes, 2, 1) >= 8;  // an RLE packet holds at most 128 pixels
+    return start + (rle ? (pixels + 127) / 128 * (1 + pixel_bytes) : pixels * pixel_bytes);
+  }
+  return 0;
+}
+
+template <typename T>
+DecodedImage decode_as(std::span<const std::byte> bytes, ImageHeader header, T* (*load)(const stbi_uc*, int, int*, int*, int*, int),
+                       float scale) {
   int w = 0, h = 0, c = 0;
-  if (!stbi_info_from_memory(data_of(bytes), length_of(bytes), &w, &h, &c) || w < 1 || h < 1 || c < 1) fail();
+  return copy_scaled(load(data_of(bytes), length_of(bytes), &w, &h, &c, static_cast<int>(header.channels)), header, false, scale);
+}
+
+}  // namespace
+
+ImageHeader stb_header(std::span<const std::byte> bytes) {
+  const Format format = format_of(bytes);
+  int w = 0, h = 0, c = 0;
+  if (!stbi_info_from_memory(data_of(bytes), length_of(bytes), &w, &h, &c)) fail();
+  if (format == Format::bmp && h < 0 && h != INT_MIN) h = -h;  // a top-down BMP (libstb decodes it)
+  if (w < 1 || h < 1 || c < 1)
+    throw Error("not a readable image: its header says " + std::to_string(w) + "x" + std::to_string(h) + " pixels");
+  // (Sides over kMaxImageSide are refused by the caller; below it the product cannot overflow.)
+  const uint64_t least = std::max(w, h) > static_cast<int>(kMaxImageSide) ? 0 : least_bytes(format, bytes, uint64_t(w), uint64_t(h));
+  if (bytes.size() < least)
+    throw Error("truncated or a damaged header: " + std::to_string(w) + "x" + std::to_string(h) +
+                " pixels take at least " + std::to_string(least) + " bytes, the file has " + std::to_string(bytes.size()));
   return {static_cast<uint32_t>(w), static_cast<uint32_t>(h), static_cast<uint32_t>(c)};
 }
 
 DecodedImage stb_decode(std::span<const std::byte> bytes) {
   const ImageHeader header = stb_header(bytes);
-  const int length = length_of(bytes);
-  int w = 0, h = 0, c = 0;
-  const int channels = static_cast<int>(header.channels);
-  if (stbi_is_16_bit_from_memory(data_of(bytes), length))
-    return copy_scaled(stbi_load_16_from_memory(data_of(bytes), length, &w, &h, &c, channels), header, false, 1.0f / 65535.0f);
-  return copy_scaled(stbi_load_from_memory(data_of(bytes), length, &w, &h, &c, channels), header, false, 1.0f / 255.0f);
+  if (stbi_is_16_bit_from_memory(data_of(bytes), length_of(bytes)))
+    return decode_as(bytes, header, stbi_load_16_from_memory, 1.0f / 65535.0f);
+  DecodedImage image = decode_as(bytes, header, stbi_load_from_memory, 1.0f / 255.0f);
+  if (format_of(bytes) == Format::tga) {
+    // An RLE TGA has no length to check and no end marker: decode it again with bytes appended.
+    // A decoder that stays inside the file gives the same pixels; one that ran past the end
+    // (where libstb reads zeros) now reads 0xff and gives others.
+    std::vector<std::byte> padded(bytes.begin(), bytes.end());
+    padded.resize(bytes.size() + 64, std::byte{0xff});
+    if (decode_as(padded, header, stbi_load_from_memory, 1.0f / 255.0f).pixels != image.pixels)
+      throw Error("truncated: its pixel data ends before the " + std::to_string(header.width) + "x" +
+                  std::to_string(header.height) + " pixels its header says");
+  }
+  return image;
 }
 
 std::vector<unsigned char> stb_encode(const FloatImage& image, ImageFormat format) {

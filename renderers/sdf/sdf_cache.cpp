@@ -110,6 +110,12 @@ void write_sdf_cache(const fs::path& path, const Scene& scene, const SceneSdf& s
 
 namespace {
 
+// The whole file, read once its header has been checked against its size.
+std::vector<std::byte> read_cache(const InputFile& file, const fs::path& path) {
+  check_sdf_cache_header(file.read_prefix(kSdfCacheHeaderBytes), file.size(), path.string());
+  return file.read_all();
+}
+
 // The cache already read (and bounded), checked completely and against this scene.
 SceneSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, const Scene& scene,
                         const MeshGridParams& mesh_params, const SceneHashParams& hash_params) {
@@ -138,7 +144,7 @@ SceneSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, 
 
 SceneSdf load_sdf_cache(const fs::path& path, const Scene& scene, const MeshGridParams& mesh_params,
                         const SceneHashParams& hash_params) {
-  return sdf_from_cache(read_input_bytes(path, "SDF cache", kMaxSdfCacheBytes), path, scene, mesh_params, hash_params);
+  return sdf_from_cache(read_cache(InputFile(path, "SDF cache", kMaxSdfCacheBytes), path), path, scene, mesh_params, hash_params);
 }
 
 SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
@@ -149,9 +155,9 @@ SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params,
   if (fs::exists(path, ec)) {
     const auto start = std::chrono::steady_clock::now();
     // Outside the policy: a FIFO, device, directory or oversized file is no cache to replace.
-    const std::vector<std::byte> bytes = read_input_bytes(path, "SDF cache", kMaxSdfCacheBytes);
+    const InputFile file(path, "SDF cache", kMaxSdfCacheBytes);
     try {
-      SceneSdf sdf = sdf_from_cache(bytes, path, scene, mesh_params, hash_params);
+      SceneSdf sdf = sdf_from_cache(read_cache(file, path), path, scene, mesh_params, hash_params);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       log << "SDF cache: loaded '" << path.string() << "' in " << static_cast<long>(ms) << " ms (build skipped)\n";
       return sdf;

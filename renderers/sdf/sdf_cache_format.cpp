@@ -53,7 +53,7 @@ struct HashHeader {
   uint32_t reserved;
   double build_ms;
 };
-static_assert(sizeof(FileHeader) == 88 && sizeof(SectionEntry) == 32 && sizeof(GridHeader) == 48 &&
+static_assert(sizeof(FileHeader) == kSdfCacheHeaderBytes && sizeof(SectionEntry) == 32 && sizeof(GridHeader) == 48 &&
               sizeof(HashHeader) == 40);
 
 enum SectionKind : uint32_t {
@@ -107,31 +107,40 @@ class Writer {
   std::vector<Pending> pending_;
 };
 
+[[noreturn]] void fail_invalid(const std::string& source, const std::string& what) {
+  throw Error("SDF cache '" + source + "' is invalid: " + what + " (rebuild it with `sdfbench build --cache`)");
+}
+
+// The fixed header against the file's size: what can be checked before the body is read.
+FileHeader check_header(std::span<const std::byte> head, uint64_t file_bytes, const std::string& source) {
+  if (file_bytes < sizeof(FileHeader) + sizeof(uint64_t) || head.size() < sizeof(FileHeader))
+    fail_invalid(source, "file is " + std::to_string(file_bytes) + " bytes, too short for a cache header");
+  FileHeader h;
+  std::memcpy(&h, head.data(), sizeof h);
+  if (std::memcmp(h.magic, kMagic, sizeof kMagic) != 0)
+    throw Error("'" + source + "' is not an sdfbench SDF cache (bad magic)");
+  if (h.version != kSdfCacheVersion)
+    throw Error("SDF cache '" + source + "' has format version " + std::to_string(h.version) + "; this sdfbench reads version " +
+                std::to_string(kSdfCacheVersion) + " (rebuild it with `sdfbench build --cache`)");
+  if (h.header_bytes != sizeof(FileHeader)) fail_invalid(source, "header size " + std::to_string(h.header_bytes));
+  if (h.file_bytes != file_bytes)
+    fail_invalid(source, "truncated or extended: header says " + std::to_string(h.file_bytes) + " bytes, file has " +
+                             std::to_string(file_bytes));
+  return h;
+}
+
 // Reads validated sections; every failure is an Error naming the file and the problem.
 class Reader {
  public:
   Reader(std::span<const std::byte> bytes, const std::string& source) : bytes_(bytes), source_(source) {}
 
-  [[noreturn]] void fail(const std::string& what) const {
-    throw Error("SDF cache '" + source_ + "' is invalid: " + what + " (rebuild it with `sdfbench build --cache`)");
-  }
+  [[noreturn]] void fail(const std::string& what) const { fail_invalid(source_, what); }
   void require(bool ok, const std::string& what) const {
     if (!ok) fail(what);
   }
 
   FileHeader header() {
-    require(bytes_.size() >= sizeof(FileHeader) + sizeof(uint64_t),
-            "file is " + std::to_string(bytes_.size()) + " bytes, too short for a cache header");
-    FileHeader h;
-    std::memcpy(&h, bytes_.data(), sizeof h);
-    if (std::memcmp(h.magic, kMagic, sizeof kMagic) != 0)
-      throw Error("'" + source_ + "' is not an sdfbench SDF cache (bad magic)");
-    if (h.version != kSdfCacheVersion)
-      throw Error("SDF cache '" + source_ + "' has format version " + std::to_string(h.version) + "; this sdfbench reads version " +
-                  std::to_string(kSdfCacheVersion) + " (rebuild it with `sdfbench build --cache`)");
-    require(h.header_bytes == sizeof(FileHeader), "header size " + std::to_string(h.header_bytes));
-    require(h.file_bytes == bytes_.size(), "truncated or extended: header says " + std::to_string(h.file_bytes) +
-                                               " bytes, file has " + std::to_string(bytes_.size()));
+    const FileHeader h = check_header(bytes_, bytes_.size(), source_);
     uint64_t stored;
     std::memcpy(&stored, bytes_.data() + bytes_.size() - sizeof stored, sizeof stored);
     require(stored == fnv1a64(bytes_.first(bytes_.size() - sizeof stored)), "checksum mismatch (corrupted file)");
@@ -356,6 +365,10 @@ std::vector<std::byte> encode_sdf_cache(const SdfCacheContents& c) {
   w.add(kNodes, 0, c.hash.nodes);
   w.add(kInstanceLists, 0, c.hash.instance_lists);
   return w.finish(h);
+}
+
+void check_sdf_cache_header(std::span<const std::byte> head, uint64_t file_bytes, const std::string& source) {
+  check_header(head, file_bytes, source);
 }
 
 SdfCacheContents decode_sdf_cache(std::span<const std::byte> bytes, const std::string& source) {

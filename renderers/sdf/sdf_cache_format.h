@@ -56,6 +56,13 @@ std::vector<std::byte> encode_sdf_cache(const SdfCacheContents& contents);
 // index out of range, ...). `source` names the file in messages.
 SdfCacheContents decode_sdf_cache(std::span<const std::byte> bytes, const std::string& source);
 
+// What can be checked before a cache's body is read: its first kSdfCacheHeaderBytes bytes
+// (magic, version, header size) and the size it declares against the file's `file_bytes`, so a
+// file that is no cache of this version costs a few bytes to refuse, not its size. Throws the
+// Error decode_sdf_cache would.
+inline constexpr size_t kSdfCacheHeaderBytes = 88;
+void check_sdf_cache_header(std::span<const std::byte> head, uint64_t file_bytes, const std::string& source);
+
 // Recomputes the trailing checksum in place (the fuzz target uses it to get past the checksum
 // and exercise the structural checks).
 void reseal_sdf_cache(std::span<std::byte> bytes);
