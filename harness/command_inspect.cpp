@@ -1,5 +1,6 @@
 // `sdfbench inspect FILE`: validate an SDF cache completely and describe it.
 #include <cstdio>
+#include <vector>
 
 #include "harness/commands.h"
 #include "renderers/sdf/sdf_cache_format.h"
@@ -9,8 +10,11 @@ namespace sdfbench {
 namespace {
 
 void run_inspect(const std::string& path) {
-  const sdf::SdfCacheContents c =
-      sdf::decode_sdf_cache(read_input_bytes(path, "SDF cache", sdf::kMaxSdfCacheBytes), path);
+  // The header first: a file of gigabytes that is no cache is refused for its first bytes.
+  const InputFile file(path, "SDF cache", sdf::kMaxSdfCacheBytes);
+  const std::vector<std::byte> head = file.read_prefix(sdf::kSdfCacheHeaderBytes);
+  sdf::check_sdf_cache_header(head, file.size(), path);
+  const sdf::SdfCacheContents c = sdf::decode_sdf_cache(file.read_all(), path);
   const sdf::MeshGridParams& m = c.mesh_params;
   const sdf::SceneHashParams& h = c.hash_params;
   std::printf("file         %s (%llu bytes), valid\n", path.c_str(), static_cast<unsigned long long>(c.file_bytes));
