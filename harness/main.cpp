@@ -10,26 +10,7 @@
 
 #include "harness/commands.h"
 #include "scenes/error.h"
-
-namespace {
-
-// One line whatever the message holds: a newline or other control character (a JSON key such as
-// "a\nb" quoted in an error) is written as an escape.
-std::string one_line(const std::string& message) {
-  std::string out;
-  for (const char c : message) {
-    if (static_cast<unsigned char>(c) >= 0x20 && c != 0x7f) {
-      out += c;
-    } else {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", static_cast<unsigned char>(c));
-      out += escaped;
-    }
-  }
-  return out;
-}
-
-}  // namespace
+#include "util/input_file.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"sdfbench: a benchmark harness for ray tracing acceleration structures (SDF hash/octree vs triangles)"};
@@ -71,7 +52,7 @@ int main(int argc, char** argv) {
   } catch (const sdfbench::CommandFailed& e) {
     return e.code;
   } catch (const sdfbench::Error& e) {
-    std::cerr << "sdfbench: error: " << one_line(e.what()) << "\n";
+    std::cerr << "sdfbench: error: " << sdfbench::printable(e.what()) << "\n";
     return 1;
   } catch (const std::length_error&) {  // a container asked for more than it can hold: a size, not a bug
     std::cerr << "sdfbench: error: out of memory: a structure or image size exceeds what can be allocated "
