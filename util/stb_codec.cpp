@@ -80,7 +80,7 @@ uint64_t le(std::span<const std::byte> bytes, size_t at, int count) {
 
 // The fewest bytes a BMP or TGA of this size can be, from its header. libstb reads zeros past the
 // end of the data, so a truncated file, or 100 bytes claiming 4096x4096, would decode to an image
-// it mostly invented. PNG and JPEG decoders fail on missing data themselves.
+// it mostly invented. PNG's decoder fails on missing data itself; JPEG: jpeg_complete().
 uint64_t least_bytes(Format format, std::span<const std::byte> bytes, uint64_t width, uint64_t height) {
   if (format == Format::bmp) {  // rows of width * bits, padded to 4 bytes, from the data offset
     const uint64_t header_bytes = le(bytes, 14, 4), bits = le(bytes, header_bytes == 12 ? 24 : 28, 2);
@@ -94,6 +94,20 @@ uint64_t least_bytes(Format format, std::span<const std::byte> bytes, uint64_t w
     return start + (rle ? (pixels + 127) / 128 * (1 + pixel_bytes) : pixels * pixel_bytes);
   }
   return 0;
+}
+
+// A JPEG ends its last scan with the end-of-image marker (FF D9). Neither marker can occur inside
+// entropy-coded data (an FF there is stuffed as FF 00), so a file whose last start-of-scan (FF DA)
+// is not followed by FF D9 was cut short. Needed because Debian 13's libstb decodes such a file
+// with zeros for the missing data (Debian 12's fails).
+bool jpeg_complete(std::span<const std::byte> bytes) {
+  auto byte = [&](size_t i) { return std::to_integer<unsigned>(bytes[i]); };
+  size_t last_scan = 0;
+  for (size_t i = 0; i + 1 < bytes.size(); ++i)
+    if (byte(i) == 0xff && byte(i + 1) == 0xda) last_scan = i;
+  for (size_t i = last_scan; last_scan > 0 && i + 1 < bytes.size(); ++i)
+    if (byte(i) == 0xff && byte(i + 1) == 0xd9) return true;
+  return false;
 }
 
 template <typename T>
@@ -114,6 +128,8 @@ ImageHeader stb_header(std::span<const std::byte> bytes) {
     throw Error("not a readable image: its header says " + std::to_string(w) + "x" + std::to_string(h) + " pixels");
   // (Sides over kMaxImageSide are refused by the caller; below it the product cannot overflow.)
   const uint64_t least = std::max(w, h) > static_cast<int>(kMaxImageSide) ? 0 : least_bytes(format, bytes, uint64_t(w), uint64_t(h));
+  if (format == Format::jpeg && !jpeg_complete(bytes))
+    throw Error("truncated: the JPEG's last scan has no end-of-image marker (FF D9)");
   if (bytes.size() < least)
     throw Error("truncated or a damaged header: " + std::to_string(w) + "x" + std::to_string(h) +
                 " pixels take at least " + std::to_string(least) + " bytes, the file has " + std::to_string(bytes.size()));
