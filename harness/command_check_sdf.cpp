@@ -16,6 +16,7 @@
 #include "harness/commands.h"
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "scenes/error.h"
+#include "scenes/scene.h"
 #include "scenes/mesh.h"
 #include "scenes/mesh_resize.h"
 #include "scenes/random.h"
@@ -59,7 +60,9 @@ Mesh load_mesh_argument(const std::string& text) {
   const std::filesystem::path path(text);
   if (!std::filesystem::is_regular_file(path))
     throw Error("--mesh '" + text + "': neither a built-in mesh (bunny, teapot, monkey, sphere) nor an existing OBJ file");
-  return load_obj(path, path.stem().string());
+  Mesh mesh = load_obj(path, path.stem().string());
+  check_coordinates(mesh, "--mesh '" + text + "'");  // as a scene file's meshes are (kMaxCoordinate)
+  return mesh;
 }
 
 glm::vec3 random_direction(Pcg32& rng) {

@@ -52,38 +52,42 @@ std::string short_float(float v) {
   return text;
 }
 
-void require_within(const Scene& scene, std::initializer_list<glm::vec3> points, const std::string& what) {
+void require_within(const std::string& where, std::initializer_list<glm::vec3> points, const std::string& what) {
   const float largest = largest_coordinate(points);
   if (largest <= kMaxCoordinate) return;
-  throw Error(scene.name + ": " + what + " reaches a coordinate of " + short_float(largest) + ", beyond the limit of " +
+  throw Error(where + ": " + what + " reaches a coordinate of " + short_float(largest) + ", beyond the limit of " +
               short_float(kMaxCoordinate) + " in magnitude (README \"Inputs, outputs and limits\")");
 }
 
 }  // namespace
 
+void check_coordinates(const Mesh& mesh, const std::string& where) {
+  require_within(where, {mesh.bounds.min, mesh.bounds.max}, "mesh '" + mesh.name + "' (file '" + mesh.source.string() + "')");
+}
+
 void check_coordinates(const Scene& scene) {
   // Meshes and shapes first: with their own coordinates within the limit (and the transforms'
   // bounded scale and translation), their world boxes are finite.
   for (const Mesh& mesh : scene.meshes)
-    require_within(scene, {mesh.bounds.min, mesh.bounds.max}, "meshes." + mesh.name + " (file '" + mesh.source.string() + "')");
+    require_within(scene.name, {mesh.bounds.min, mesh.bounds.max}, "meshes." + mesh.name + " (file '" + mesh.source.string() + "')");
   for (size_t i = 0; i < scene.implicits.size(); ++i) {
     const Aabb shape = implicit_bounds(scene.implicits[i].nodes);
-    require_within(scene, {shape.min, shape.max}, "implicits[" + std::to_string(i) + "].shape");
+    require_within(scene.name, {shape.min, shape.max}, "implicits[" + std::to_string(i) + "].shape");
   }
   for (size_t i = 0; i < scene.instances.size(); ++i) {
     const Aabb box = scene.world_bounds(scene.instances[i]);
-    require_within(scene, {box.min, box.max}, "instances[" + std::to_string(i) + "] (its mesh scaled and moved)");
+    require_within(scene.name, {box.min, box.max}, "instances[" + std::to_string(i) + "] (its mesh scaled and moved)");
   }
   for (size_t i = 0; i < scene.implicits.size(); ++i) {
     const Aabb box = scene.world_bounds(scene.implicits[i]);
-    require_within(scene, {box.min, box.max}, "implicits[" + std::to_string(i) + "] (its shape scaled and moved)");
+    require_within(scene.name, {box.min, box.max}, "implicits[" + std::to_string(i) + "] (its shape scaled and moved)");
   }
-  require_within(scene, {scene.camera.position}, "camera.position");
-  require_within(scene, {scene.camera.look_at}, "camera.look_at");
+  require_within(scene.name, {scene.camera.position}, "camera.position");
+  require_within(scene.name, {scene.camera.look_at}, "camera.look_at");
   for (size_t i = 0; i < scene.lights.size(); ++i)
     if (scene.lights[i].kind == Light::Kind::Point)
-      require_within(scene, {scene.lights[i].position}, "lights[" + std::to_string(i) + "].position");
-  if (scene.floor.enabled) require_within(scene, {glm::vec3(0.0f, scene.floor.height, 0.0f)}, "floor.height");
+      require_within(scene.name, {scene.lights[i].position}, "lights[" + std::to_string(i) + "].position");
+  if (scene.floor.enabled) require_within(scene.name, {glm::vec3(0.0f, scene.floor.height, 0.0f)}, "floor.height");
 }
 
 }  // namespace sdfbench

@@ -113,5 +113,7 @@ struct Scene {
 // object, camera point, point light or floor whose coordinates exceed kMaxCoordinate, with the
 // field as a scene file names it (meshes.<name>, instances[i], ...).
 void check_coordinates(const Scene& scene);
+// The same for one mesh loaded on its own (check-sdf --mesh FILE); `where` prefixes the error.
+void check_coordinates(const Mesh& mesh, const std::string& where);
 
 }  // namespace sdfbench

@@ -202,6 +202,13 @@ TEST(Limits, HugeCoordinatesRenderOrAreRefusedByEveryBackend) {
   }
 }
 
+// A mesh checked on its own (check-sdf --mesh FILE) is held to the same limit as a scene's.
+TEST(Limits, CheckSdfMeshFileHasTheCoordinateLimit) {
+  const test::TempDir dir;
+  const std::string obj = dir.write("tri1e19.obj", triangle_obj("1e19")).string();
+  expect_short_error("check-sdf --samples 10 --mesh " + obj, {"--mesh '" + obj + "'", "mesh 'tri1e19'", "limit of 1e+09"}, 400, 60);
+}
+
 TEST(Limits, CoordinateLimitCoversTheCameraLightsAndFloor) {
   const test::TempDir dir;
   const std::string small = dir.write("small.obj", triangle_obj("1")).string();
