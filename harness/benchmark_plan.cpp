@@ -9,8 +9,8 @@
 #include <set>
 #include <sstream>
 
-#include "scenes/error.h"
 #include "util/atomic_file.h"
+#include "util/error.h"
 #include "util/fnv1a.h"
 
 namespace sdfbench {

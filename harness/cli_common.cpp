@@ -7,7 +7,7 @@
 #include <map>
 
 #include "renderers/shading/gpu_types.h"
-#include "scenes/error.h"
+#include "util/error.h"
 #include "util/input_file.h"
 
 namespace sdfbench {

@@ -12,9 +12,9 @@
 #include "harness/output_paths.h"
 #include "renderers/sdf/scene_hash.h"
 #include "renderers/sdf/sdf_cache.h"
-#include "scenes/error.h"
 #include "scenes/scene_source.h"
 #include "util/atomic_file.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

@@ -15,12 +15,12 @@
 
 #include "harness/commands.h"
 #include "renderers/sdf/mesh_distance_grid.h"
-#include "scenes/error.h"
 #include "scenes/scene.h"
 #include "scenes/mesh.h"
 #include "scenes/mesh_resize.h"
 #include "scenes/random.h"
 #include "scenes/sized_mesh.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

@@ -11,8 +11,8 @@
 #include "harness/image_output.h"
 #include "harness/list_option.h"
 #include "harness/output_paths.h"
-#include "scenes/error.h"
 #include "scenes/scene_source.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

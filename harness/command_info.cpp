@@ -11,9 +11,9 @@
 #include "renderers/vulkan/loop_cap_probe.h"
 #include "renderers/vulkan/ray_tracing_support.h"
 #include "renderers/vulkan/vulkan_context.h"
-#include "scenes/error.h"
 #include "scenes/mesh.h"
 #include "util/cpu_info.h"
+#include "util/error.h"
 #include "util/input_file.h"
 
 namespace sdfbench {

@@ -9,8 +9,8 @@
 #include "harness/measurement.h"
 #include "harness/output_paths.h"
 #include "harness/run_options.h"
-#include "scenes/error.h"
 #include "util/atomic_file.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

@@ -9,8 +9,8 @@
 #include "harness/output_paths.h"
 #include "harness/structure_view.h"
 #include "harness/timing_stats.h"
-#include "scenes/error.h"
 #include "scenes/scene_source.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

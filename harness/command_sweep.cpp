@@ -5,8 +5,8 @@
 #include "harness/commands.h"
 #include "harness/list_option.h"
 #include "harness/run_options.h"
-#include "scenes/error.h"
 #include "scenes/scene_source.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

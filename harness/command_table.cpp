@@ -5,9 +5,9 @@
 #include "harness/list_option.h"
 #include "harness/run_options.h"
 #include "harness/thesis_tables.h"
-#include "scenes/error.h"
 #include "scenes/mesh.h"
 #include "scenes/mesh_resize.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

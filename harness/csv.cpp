@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "scenes/error.h"
 #include "util/atomic_file.h"
+#include "util/error.h"
 #include "util/input_file.h"
 
 namespace sdfbench {

@@ -7,7 +7,7 @@
 
 
 #include "renderers/shading/gpu_types.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

@@ -4,8 +4,8 @@
 
 
 #include "renderers/shading/gpu_types.h"
-#include "scenes/error.h"
 #include "util/atomic_file.h"
+#include "util/error.h"
 #include "util/image_codec.h"
 
 namespace sdfbench {

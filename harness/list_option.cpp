@@ -5,7 +5,8 @@
 #include <limits>
 #include <sstream>
 
-#include "scenes/error.h"
+#include "util/error.h"
+
 
 namespace sdfbench {
 namespace {

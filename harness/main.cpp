@@ -9,7 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "harness/commands.h"
-#include "scenes/error.h"
+#include "util/error.h"
 #include "util/input_file.h"
 
 int main(int argc, char** argv) {

@@ -8,7 +8,8 @@
 #include <optional>
 #include <set>
 
-#include "scenes/error.h"
+#include "util/error.h"
+
 
 namespace sdfbench {
 namespace {

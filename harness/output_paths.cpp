@@ -2,7 +2,8 @@
 
 #include <system_error>
 
-#include "scenes/error.h"
+#include "util/error.h"
+
 
 namespace sdfbench {
 namespace fs = std::filesystem;

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "renderers/frame_params.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

@@ -4,8 +4,8 @@
 #include <sstream>
 
 #include "harness/csv.h"
-#include "scenes/error.h"
 #include "scenes/mesh.h"
+#include "util/error.h"
 #include "util/input_file.h"
 
 namespace sdfbench {

@@ -10,7 +10,7 @@
 #include "renderers/tri_aabb/tri_aabb_renderer.h"
 #include "renderers/vk_rt/vk_rt_renderer.h"
 #include "util/cpu_info.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 

@@ -3,7 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "scenes/error.h"
+#include "util/error.h"
+
 
 namespace sdfbench {
 namespace {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "scenes/error.h"
+#include "util/error.h"
 #include "util/input_file.h"
 
 namespace sdfbench {

@@ -9,7 +9,8 @@
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 #include <meshoptimizer.h>
 
-#include "scenes/error.h"
+#include "util/error.h"
+
 
 namespace sdfbench {
 namespace {

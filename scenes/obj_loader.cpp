@@ -8,8 +8,8 @@
 
 #include <tiny_obj_loader.h>
 
-#include "scenes/error.h"
 #include "scenes/mesh.h"
+#include "util/error.h"
 #include "util/input_file.h"
 
 namespace sdfbench {

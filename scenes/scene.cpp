@@ -6,7 +6,8 @@
 #include <initializer_list>
 #include <string>
 
-#include "scenes/error.h"
+#include "util/error.h"
+
 
 namespace sdfbench {
 

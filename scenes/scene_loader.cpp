@@ -5,9 +5,9 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "scenes/error.h"
 #include "scenes/implicit_parser.h"
 #include "scenes/json_field.h"
+#include "util/error.h"
 #include "util/image_codec.h"
 #include "util/input_file.h"
 

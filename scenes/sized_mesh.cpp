@@ -9,9 +9,9 @@
 #include <optional>
 #include <string_view>
 
-#include "scenes/error.h"
 #include "scenes/mesh_resize.h"
 #include "util/atomic_file.h"
+#include "util/error.h"
 #include "util/fnv1a.h"
 #include "util/input_file.h"
 

@@ -8,10 +8,10 @@
 
 #include <glm/gtc/constants.hpp>
 
-#include "scenes/error.h"
 #include "scenes/mesh_resize.h"
 #include "scenes/random.h"
 #include "scenes/sized_mesh.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

@@ -17,8 +17,8 @@
 #include "harness/markdown_report.h"
 #include "harness/measurement.h"
 #include "harness/thesis_tables.h"
-#include "scenes/error.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

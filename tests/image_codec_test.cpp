@@ -12,8 +12,8 @@
 #include "harness/image_agreement.h"
 #include "harness/image_output.h"
 #include "renderers/shading/gpu_types.h"
-#include "scenes/error.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 #include "util/image_codec.h"
 #include "util/input_file.h"
 

@@ -8,9 +8,9 @@
 #include "renderers/frame_params.h"
 #include "renderers/renderer.h"
 #include "renderers/shading/cpu_shading.h"
-#include "scenes/error.h"
 #include "scenes/scene_loader.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

@@ -23,10 +23,10 @@
 #include "harness/measurement.h"
 #include "harness/thesis_tables.h"
 #include "renderers/sdf/sdf_cache.h"
-#include "scenes/error.h"
 #include "scenes/mesh.h"
 #include "scenes/scene_loader.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

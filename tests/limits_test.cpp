@@ -14,10 +14,10 @@
 
 #include "renderers/bvh/bvh_renderer.h"
 #include "renderers/frame_params.h"
-#include "scenes/error.h"
 #include "scenes/scene_loader.h"
 #include "scenes/scene_source.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

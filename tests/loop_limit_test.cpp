@@ -11,9 +11,9 @@
 #include "harness/image_agreement.h"
 #include "renderers/renderer.h"
 #include "renderers/vulkan/loop_cap_probe.h"
-#include "scenes/error.h"
 #include "scenes/thesis_layout.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

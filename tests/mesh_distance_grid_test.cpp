@@ -10,12 +10,12 @@
 
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "renderers/sdf/triangle_distance.h"
-#include "scenes/error.h"
 #include "scenes/mesh.h"
 #include "scenes/random.h"
 #include "scenes/sized_mesh.h"
 #include "tests/grid_equality.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 
 namespace sdfbench::sdf {
 namespace {

@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include "scenes/error.h"
 #include "scenes/mesh.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

@@ -19,10 +19,10 @@
 
 #include "harness/csv.h"
 #include "harness/measurement.h"
-#include "scenes/error.h"
 #include "scenes/mesh.h"
 #include "tests/test_support.h"
 #include "util/atomic_file.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

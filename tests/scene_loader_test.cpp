@@ -1,9 +1,9 @@
 // The descriptor loader rejects bad input with a message naming the file, the field and the problem.
 #include <gtest/gtest.h>
 
-#include "scenes/error.h"
 #include "scenes/scene_loader.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

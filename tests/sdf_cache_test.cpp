@@ -10,11 +10,11 @@
 
 #include "renderers/sdf/sdf_cache.h"
 #include "renderers/sdf/sdf_cache_format.h"
-#include "scenes/error.h"
 #include "scenes/random.h"
 #include "scenes/scene_source.h"
 #include "tests/grid_equality.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

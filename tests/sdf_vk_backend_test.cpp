@@ -5,9 +5,9 @@
 #include "harness/image_agreement.h"
 #include "renderers/renderer.h"
 #include "renderers/work_counters.h"
-#include "scenes/error.h"
 #include "renderers/shading/gpu_types.h"
 #include "scenes/thesis_layout.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

@@ -10,11 +10,11 @@
 
 #include "harness/csv.h"
 #include "renderers/sdf/mesh_distance_grid.h"
-#include "scenes/error.h"
 #include "scenes/mesh_resize.h"
 #include "scenes/sized_mesh.h"
 #include "scenes/thesis_layout.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

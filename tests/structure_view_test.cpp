@@ -4,9 +4,9 @@
 
 #include "harness/structure_view.h"
 #include "renderers/renderer.h"
-#include "scenes/error.h"
 #include "scenes/scene_source.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

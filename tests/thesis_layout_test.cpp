@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "scenes/error.h"
 #include "scenes/thesis_layout.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

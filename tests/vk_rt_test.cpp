@@ -13,9 +13,9 @@
 #include "renderers/renderer.h"
 #include "renderers/shading/gpu_types.h"
 #include "renderers/vulkan/ray_tracing_support.h"
-#include "scenes/error.h"
 #include "scenes/thesis_layout.h"
 #include "tests/test_support.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

@@ -12,7 +12,8 @@
 #include <random>
 #include <string>
 
-#include "scenes/error.h"
+#include "util/error.h"
+
 
 namespace sdfbench {
 namespace {

@@ -12,7 +12,7 @@
 #include <OpenEXR/ImfVersion.h>
 #include <Iex.h>
 
-#include "scenes/error.h"
+#include "util/error.h"
 #include "util/image_codec.h"
 
 namespace sdfbench::codec {

@@ -3,7 +3,8 @@
 #include <cctype>
 #include <exception>
 
-#include "scenes/error.h"
+#include "util/error.h"
+
 
 namespace sdfbench {
 namespace {

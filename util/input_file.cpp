@@ -10,7 +10,8 @@
 #include <cstring>
 #include <string_view>
 
-#include "scenes/error.h"
+#include "util/error.h"
+
 
 namespace sdfbench {
 

@@ -11,7 +11,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
-#include "scenes/error.h"
+#include "util/error.h"
 #include "util/image_codec.h"
 
 namespace sdfbench::codec {

@@ -4,7 +4,8 @@
 #include <limits>
 #include <string>
 
-#include "scenes/error.h"
+#include "util/error.h"
+
 
 namespace sdfbench {
 namespace {

@@ -4,7 +4,7 @@
 #include <chrono>
 
 #include "renderers/bvh/bvh_builder.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

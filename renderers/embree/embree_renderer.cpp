@@ -2,7 +2,7 @@
 
 #include "util/cpu_info.h"
 #include "renderers/cpu_frame.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 

@@ -13,7 +13,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "scenes/error.h"
+#include "util/error.h"
 #include "util/input_file.h"
 #include "util/progress.h"
 

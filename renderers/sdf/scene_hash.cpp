@@ -11,7 +11,7 @@
 
 #include <tbb/parallel_invoke.h>
 
-#include "scenes/error.h"
+#include "util/error.h"
 #include "util/input_file.h"
 #include "util/progress.h"
 

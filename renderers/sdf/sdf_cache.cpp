@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "renderers/sdf/sdf_cache_format.h"
-#include "scenes/error.h"
 #include "util/atomic_file.h"
+#include "util/error.h"
 #include "util/fnv1a.h"
 #include "util/input_file.h"
 

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <type_traits>
 
-#include "scenes/error.h"
+#include "util/error.h"
 #include "util/fnv1a.h"
 
 namespace sdfbench::sdf {

@@ -5,7 +5,7 @@
 #include "util/cpu_info.h"
 #include "renderers/cpu_frame.h"
 #include "renderers/frame_params.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 

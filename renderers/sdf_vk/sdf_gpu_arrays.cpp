@@ -9,7 +9,7 @@
 
 #include "renderers/frame_params.h"
 #include "renderers/sdf/traced_distance.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "renderers/sdf_vk/sdf_gpu_arrays.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

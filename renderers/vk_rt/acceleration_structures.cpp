@@ -5,7 +5,7 @@
 
 #include "renderers/vulkan/one_time_commands.h"
 #include "renderers/vulkan/vk_error.h"
-#include "scenes/error.h"
+#include "util/error.h"
 #include "util/morton.h"
 
 namespace sdfbench {

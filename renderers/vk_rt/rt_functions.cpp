@@ -2,7 +2,8 @@
 
 #include <string>
 
-#include "scenes/error.h"
+#include "util/error.h"
+
 
 namespace sdfbench {
 namespace {

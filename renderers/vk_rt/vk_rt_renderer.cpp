@@ -3,7 +3,7 @@
 #include <chrono>
 
 #include "renderers/vk_rt/rt_pipeline.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 

@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "renderers/vulkan/vk_error.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

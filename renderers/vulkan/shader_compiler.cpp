@@ -7,7 +7,7 @@
 #include <glslang/SPIRV/GlslangToSpv.h>
 
 #include "renderers/vulkan/embedded_shaders.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

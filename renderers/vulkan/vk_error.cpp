@@ -3,7 +3,8 @@
 #include <vulkan/vulkan.hpp>
 #include <vulkan/vulkan_to_string.hpp>
 
-#include "scenes/error.h"
+#include "util/error.h"
+
 
 namespace sdfbench {
 

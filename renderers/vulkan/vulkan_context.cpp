@@ -7,7 +7,7 @@
 
 #include "renderers/vulkan/ray_tracing_support.h"
 #include "renderers/vulkan/vk_error.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

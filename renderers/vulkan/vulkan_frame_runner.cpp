@@ -6,7 +6,7 @@
 #include "renderers/frame_params.h"
 #include "renderers/vulkan/loop_cap_probe.h"
 #include "renderers/vulkan/vk_error.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 namespace sdfbench {
 namespace {

@@ -22,8 +22,8 @@
 #include "renderers/vulkan/gpu_buffer.h"
 #include "renderers/vulkan/one_time_commands.h"
 #include "renderers/vulkan/shader_compiler.h"
-#include "scenes/error.h"
 #include "scenes/scene_source.h"
+#include "util/error.h"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "scenes/error.h"
 #include "scenes/mesh.h"
+#include "util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

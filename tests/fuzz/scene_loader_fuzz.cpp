@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <string>
 
-#include "scenes/error.h"
 #include "scenes/mesh.h"
 #include "scenes/scene_loader.h"
+#include "util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::filesystem::path origin = sdfbench::data_dir() / "fuzz.json";

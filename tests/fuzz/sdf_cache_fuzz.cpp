@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "renderers/sdf/sdf_cache_format.h"
-#include "scenes/error.h"
+#include "util/error.h"
 
 using sdfbench::Error;
 namespace sdf = sdfbench::sdf;
