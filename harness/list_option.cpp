@@ -28,26 +28,27 @@ void refuse_repeats(const std::vector<T>& values, const std::vector<std::string>
                     (items[i] == items[j] ? "" : " (as '" + items[j] + "')") + "; each value is one configuration");
 }
 
+// The comma-separated items of `text`, empty ones skipped; at least one.
+std::vector<std::string> non_empty_items(const std::string& text, const std::string& option) {
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) items.push_back(item);
+  if (items.empty()) throw Error(option + " '" + text + "': expected a comma-separated list");
+  return items;
+}
+
 }  // namespace
 
 std::vector<std::string> split_list(const std::string& text, const std::string& option) {
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) items.push_back(item);
-  if (items.empty()) throw Error(option + " '" + text + "': expected a comma-separated list");
+  const std::vector<std::string> items = non_empty_items(text, option);
   refuse_repeats(items, items, text, option);
   return items;
 }
 
 template <class T>
 std::vector<T> parse_list(const std::string& text, const std::string& option) {
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) items.push_back(item);
-  if (items.empty()) throw Error(option + " '" + text + "': expected a comma-separated list");
+  const std::vector<std::string> items = non_empty_items(text, option);
   std::vector<T> values;
   for (const std::string& item : items) {
     T v{};
@@ -55,7 +56,7 @@ std::vector<T> parse_list(const std::string& text, const std::string& option) {
     const std::string where = option + " '" + text + "': '" + item + "'";
     if (ec == std::errc::result_out_of_range && end == item.data() + item.size() && item[0] != '-')
       throw Error(where + " is out of range (at most " + text_of(std::numeric_limits<T>::max()) + ")");
-    if (ec != std::errc() || end != item.data() + item.size() || v < T{0} || (item[0] == '-'))
+    if (ec != std::errc() || end != item.data() + item.size() || item[0] == '-')
       throw Error(where + " is not a non-negative number");
     if constexpr (std::is_floating_point_v<T>)
       if (!std::isfinite(v)) throw Error(where + " is not a finite number");
