@@ -35,7 +35,7 @@ apt-get "${apt_private[@]}" update -qq >"$state/update.log" 2>&1 ||
 
 packages=(mesa-vulkan-drivers)
 need_llvm=false
-if ! /sbin/ldconfig -p | grep -q 'libLLVM-15\.so\.1 '; then
+if ! /sbin/ldconfig -p | grep 'libLLVM-15\.so\.1 ' >/dev/null; then  # not grep -q (pipefail + SIGPIPE)
   need_llvm=true
   packages+=(libllvm15)
   command -v patchelf >/dev/null || fail "patchelf is missing (install_deps.sh installs it on Debian 13)"

@@ -90,7 +90,7 @@ fi
 if ! $mesa_ok; then
   suite_flags=()
   if [ -n "$mesa_suite" ]; then
-    if ! apt-cache policy mesa-vulkan-drivers | grep -q "$mesa_suite"; then
+    if ! apt-cache policy mesa-vulkan-drivers | grep "$mesa_suite" >/dev/null; then  # not grep -q: under pipefail its early exit can fail the pipe (SIGPIPE)
       echo "install_deps: error: Debian's $mesa_suite suite cannot be reached (apt-get update" \
         "did not list it); sdfbench needs its mesa-vulkan-drivers (>= $min_mesa_version). Check the" \
         "network or mirror for $backports_sources" >&2
