@@ -54,7 +54,7 @@ Measurement configuration_fields(const BenchConfig& config, size_t run_index, co
       m.fixed_grid = config.options.mesh_grid.scale_with_triangles ? 0.0 : 1.0;
     }
     const sdf::SphereTraceParams& t = config.options.tracing;
-    m.hit = t.hit == sdf::HitMode::exact ? "exact" : "thesis";
+    m.hit = sdf::to_string(t.hit);
     m.max_steps = t.max_steps;
     m.hit_epsilon = t.hit_epsilon;
     m.hit_footprint = t.footprint;
@@ -62,6 +62,8 @@ Measurement configuration_fields(const BenchConfig& config, size_t run_index, co
     m.cell_bound = t.cell_bound ? 1.0 : 0.0;
     m.storage_tables = t.storage_tables ? 1.0 : 0.0;
     m.max_structure_mb = static_cast<double>(config.options.mesh_grid.max_bytes >> 20);
+    for (const ParamSpec& spec : param_specs())
+      if (spec.family == config.backend) m.backend_params[spec.name] = config.options.params.get(spec.name);
     m.cache = config.options.cache.path;
     if (!m.cache.empty()) m.on_bad_cache = config.options.cache.on_bad == sdf::BadCachePolicy::Rebuild ? "rebuild" : "refuse";
   }
@@ -157,6 +159,7 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   m.aabb_tests_per_ray = per_ray(COUNTER_AABB_TESTS);
   m.triangle_tests_per_ray = per_ray(COUNTER_TRIANGLE_TESTS);
   m.out_of_steps_per_ray = per_ray(COUNTER_OUT_OF_STEPS);
+  m.field_samples_per_ray = per_ray(COUNTER_FIELD_SAMPLES);
   if (config.backend == settings_.reference) {
     m.agreement = "reference";
   } else {

@@ -80,6 +80,7 @@ void add_backend_options(CLI::App& command, BackendOptions& options) {
              "whole ray tree in one invocation; auto (default): on only where `sdfbench info` finds a loop cap")
       ->check(CLI::IsMember({"auto", "on", "off"}));
   add_structure_options(command, options);
+  add_backend_param_options(command, options.params);
   command.add_option("--cache", options.cache.path,
                      "SDF structure cache file: loaded when valid for this scene and these parameters, else built and written")
       ->check([](const std::string& path) -> std::string {
@@ -97,6 +98,18 @@ void add_backend_options(CLI::App& command, BackendOptions& options) {
                                                                                     {"rebuild", sdf::BadCachePolicy::Rebuild}},
                                           CLI::ignore_case))
       ->group("SDF structures");
+}
+
+void add_backend_param_options(CLI::App& command, BackendParams& params) {
+  for (const ParamSpec& spec : param_specs()) {
+    command
+        .add_option_function<std::string>(
+            flag_of(spec), [&params, name = spec.name](const std::string& value) { params.set(name, value); },
+            spec.help + " (default " + spec.default_value + ")")
+        ->check(CLI::Validator([spec](std::string& value) { return check_param_value(spec, value); },
+                               spec.choices.empty() ? "INT" : "CHOICE"))
+        ->group(spec.family);
+  }
 }
 
 void add_structure_options(CLI::App& command, BackendOptions& options) {
@@ -155,9 +168,11 @@ void add_tracing_options(CLI::App& command, sdf::SphereTraceParams& tracing, con
       ->group(group);
   command.add_option("--hit", tracing.hit,
                      "SDF hits: exact (default: the ray's crossing with the triangles listed where it converged) or "
-                     "thesis (the converged point, the closest point's normal and uv)")
+                     "thesis (the converged point, the closest point's normal and uv); sdf-bricks: exact or field (the sampled "
+                     "field's own crossing and gradient normal, its accuracy in the row)")
       ->transform(CLI::CheckedTransformer(std::map<std::string, sdf::HitMode>{{"exact", sdf::HitMode::exact},
-                                                                             {"thesis", sdf::HitMode::thesis}},
+                                                                             {"thesis", sdf::HitMode::thesis},
+                                                                             {"field", sdf::HitMode::field}},
                                           CLI::ignore_case))
       ->group(group);
 }

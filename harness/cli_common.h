@@ -31,6 +31,8 @@ CLI::Validator number_in(double lo, double hi, bool lo_open = false);
 
 // --device, --threads, --validate and the structure options below
 void add_backend_options(CLI::App& command, BackendOptions& options);
+// The flags of every backend family's own parameters (renderers/backend_params.h), grouped by family.
+void add_backend_param_options(CLI::App& command, BackendParams& params);
 // --mesh-cell, --cells-per-extent, --hash-cell, --octree-*, --lists, --max-steps, --hit-epsilon
 void add_structure_options(CLI::App& command, BackendOptions& options);
 // --max-steps, --hit-epsilon, --hit (add_structure_options includes them).

@@ -85,6 +85,9 @@ void run_render(const RenderArgs& args) {
                          scene_inputs(scene));
   const ImageSize size = frame_size(args.size, scene);
 
+  check_backend_name(args.backend);
+  if (const std::string misplaced = args.backend_options.params.misplaced_for(args.backend); !misplaced.empty())
+    throw Error(misplaced + ", not of --backend " + args.backend);
   std::unique_ptr<Renderer> renderer = create_renderer(args.backend, args.backend_options);
   renderer->prepare(scene);
   FrameRequest request{size.width, size.height, mode, false, args.max_depth};

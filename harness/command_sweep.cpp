@@ -1,6 +1,8 @@
 // `sdfbench sweep`: the full grid of SDF structure parameters on one scene, each point with its
 // build time, bytes, FPS, Mrays/s, counters and agreement.
 
+#include <map>
+
 #include "harness/cli_common.h"
 #include "harness/commands.h"
 #include "harness/list_option.h"
@@ -15,12 +17,13 @@ struct SweepArgs {
   std::string scene, backend = "sdf-octree", mode = "primary", size = "320x180", hash_cells = "10", depths = "4",
               min_objects = "1", mesh_cells = "0", over_relax = "1", cell_bound = "0", storage_tables = "0";
   unsigned max_depth = 4;
+  std::map<std::string, std::string> params;  // the backend family's own parameters: name -> comma-separated values
   RunOptions run;
   BackendOptions options;
 };
 
 void run_sweep(SweepArgs args) {
-  if (args.backend.rfind("sdf-", 0) != 0) throw Error("--backend '" + args.backend + "': a sweep varies SDF structures (sdf-octree, sdf-hash, sdf-cpu)");
+  if (args.backend.rfind("sdf-", 0) != 0) throw Error("--backend '" + args.backend + "': a sweep varies SDF structures (sdf-octree, sdf-hash, sdf-bricks, sdf-cpu)");
   check_backend_name(args.backend);
   args.run.settings.check_size = parse_size(args.run.check_size);
   args.run.plan();  // a bad --shard fails before the plan is built
@@ -49,9 +52,27 @@ void run_sweep(SweepArgs args) {
     if (bound > 1) throw Error("--cell-bound: values must be 0 (off) or 1 (on)");
   for (unsigned storage : storages)
     if (storage > 1) throw Error("--storage-tables: values must be 0 (texel buffers) or 1 (storage buffers)");
-  check_plan_size({{"--hash-cell", cells.size()}, {"--octree-depth", depths.size()}, {"--octree-min-objects", min_objects.size()},
-                   {"--mesh-cell", mesh_cells.size()}, {"--over-relax", omegas.size()}, {"--cell-bound", bounds.size()},
-                   {"--storage-tables", storages.size()}});
+  // The backend family's own parameters (renderers/backend_params.h) are axes too; one given for
+  // another family would change nothing.
+  std::vector<std::pair<std::string, std::vector<std::string>>> param_axes;
+  std::vector<std::pair<std::string, size_t>> axis_sizes = {
+      {"--hash-cell", cells.size()},   {"--octree-depth", depths.size()}, {"--octree-min-objects", min_objects.size()},
+      {"--mesh-cell", mesh_cells.size()}, {"--over-relax", omegas.size()}, {"--cell-bound", bounds.size()},
+      {"--storage-tables", storages.size()}};
+  for (const ParamSpec& spec : param_specs()) {
+    const auto given = args.params.find(spec.name);
+    if (given == args.params.end()) continue;
+    if (spec.family != args.backend) throw Error(flag_of(spec) + " is a parameter of " + spec.family + ", not of --backend " + args.backend);
+    std::vector<std::string> values = split_list(given->second, flag_of(spec));
+    BackendParams check;
+    for (std::string& value : values) {
+      check.set(spec.name, value);  // throws naming the flag
+      value = check.get(spec.name);
+    }
+    axis_sizes.emplace_back(flag_of(spec), values.size());
+    param_axes.emplace_back(spec.name, values);
+  }
+  check_plan_size(axis_sizes);
   std::vector<BenchConfig> plan;
   for (float cell : cells)
     for (unsigned depth : depths)
@@ -71,6 +92,15 @@ void run_sweep(SweepArgs args) {
                 sdf::validate(c.options.scene_hash);
                 plan.push_back(c);
               }
+  for (const auto& [name, values] : param_axes) {
+    std::vector<BenchConfig> expanded;
+    for (const BenchConfig& c : plan)
+      for (const std::string& value : values) {
+        expanded.push_back(c);
+        expanded.back().options.params.set(name, value);
+      }
+    plan = std::move(expanded);
+  }
   run_and_report(plan, args.run, scene_inputs(load_scene(args.scene)));
 }
 
@@ -104,6 +134,11 @@ void register_sweep_command(CLI::App& app) {
   cmd->add_option("--over-relax", args->over_relax,
                   "over-relaxation factors, comma-separated (1: the thesis' plain sphere tracing; Keinert et al. 2014)")
       ->capture_default_str()->group("SDF tracing");
+  for (const ParamSpec& spec : param_specs())
+    cmd->add_option_function<std::string>(
+           flag_of(spec), [args, name = spec.name](const std::string& values) { args->params[name] = values; },
+           spec.help + "; comma-separated values (default " + spec.default_value + ")")
+        ->group(spec.family);
   add_run_options(*cmd, args->run);
   cmd->add_option("--device", args->options.device, "Vulkan device: lavapipe (default), gpu, an index or a name");
   cmd->add_option("--threads", args->options.threads, "CPU threads (Embree reference, sdf-cpu)")->check(CLI::Range(1u, 1024u));

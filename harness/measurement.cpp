@@ -1,5 +1,6 @@
 #include "harness/measurement.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <optional>
 #include <set>
 
+#include "renderers/backend_params.h"
 #include "util/error.h"
 
 
@@ -25,30 +27,37 @@ std::string number(const std::optional<double>& v) { return v ? number(*v) : "";
 // Everything configuration_fields() fills: what was asked for, not what happened (frames, the
 // timed frames actually run, and device, the device found, are left out; requested_frames and
 // requested_device are in).
-const std::vector<std::string> kKeyColumns = {
+// The backend families' own parameters (renderers/backend_params.h) follow storage_tables.
+std::vector<std::string> with_backend_params(std::vector<std::string> columns) {
+  auto at = std::find(columns.begin(), columns.end(), "storage_tables") + 1;
+  for (const ParamSpec& spec : param_specs()) at = columns.insert(at, spec.name) + 1;
+  return columns;
+}
+
+const std::vector<std::string> kKeyColumns = with_backend_params({
     "table", "scene", "backend", "mode", "max_depth", "width", "height", "hash_cell", "octree_depth",
     "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent", "fixed_grid", "hit", "max_steps", "hit_epsilon",
     "hit_footprint", "over_relax", "cell_bound", "storage_tables", "max_structure_mb", "cache", "on_bad_cache", "requested_frames", "warmup",
     "budget_s", "check_size", "reference", "requested_device",
-    "whitted_passes", "validate", "threads"};
+    "whitted_passes", "validate", "threads"});
 
 }  // namespace
 
 const std::vector<std::string>& measurement_columns() {
-  static const std::vector<std::string> columns = {
+  static const std::vector<std::string> columns = with_backend_params({
       "run_index", "run_id", "table", "scene", "mesh", "triangles", "objects", "backend", "mode", "max_depth", "width", "height",
       "hash_cell", "octree_depth", "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent", "fixed_grid", "hit",
       "max_steps", "hit_epsilon", "hit_footprint", "over_relax", "cell_bound", "storage_tables", "max_structure_mb", "cache", "on_bad_cache",
       "requested_frames", "warmup", "budget_s", "reference",
       "requested_device", "whitted_passes", "validate", "frames", "clock", "ms_median", "ms_min", "ms_max",
       "ms_wall_median", "fps", "mrays_per_s", "rays_per_pixel", "steps_per_ray", "instance_evals_per_ray",
-      "triangle_evals_per_ray", "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray", "prepare_ms", "build_ms", "structure_bytes", "check_size", "hit_agreement",
-      "id_agreement", "psnr", "agreement", "budget_cut", "device", "driver", "embree", "cpu", "threads", "commit"};
+      "triangle_evals_per_ray", "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray", "field_samples_per_ray", "prepare_ms", "build_ms", "structure_bytes", "check_size", "hit_agreement",
+      "id_agreement", "psnr", "agreement", "budget_cut", "device", "driver", "embree", "cpu", "threads", "commit"});
   return columns;
 }
 
 std::vector<std::string> to_csv_fields(const Measurement& m) {
-  return {std::to_string(m.run_index), m.run_id, m.table, m.scene, m.mesh, std::to_string(m.triangles), std::to_string(m.objects),
+  std::vector<std::string> fields = {std::to_string(m.run_index), m.run_id, m.table, m.scene, m.mesh, std::to_string(m.triangles), std::to_string(m.objects),
           m.backend, m.mode, std::to_string(m.max_depth), std::to_string(m.width), std::to_string(m.height),
           number(m.hash_cell), number(m.octree_depth), number(m.octree_min_objects), number(m.octree_min_size), m.lists,
           number(m.mesh_cell), number(m.cells_per_extent), number(m.fixed_grid), m.hit, number(m.max_steps), number(m.hit_epsilon),
@@ -57,10 +66,17 @@ std::vector<std::string> to_csv_fields(const Measurement& m) {
           m.reference, m.requested_device, m.whitted_passes, m.validate ? "1" : "0", std::to_string(m.frames), m.clock, number(m.ms_median), number(m.ms_min), number(m.ms_max),
           number(m.ms_wall_median), number(m.fps), number(m.mrays_per_s), number(m.rays_per_pixel),
           number(m.steps_per_ray), number(m.instance_evals_per_ray), number(m.triangle_evals_per_ray),
-          number(m.aabb_tests_per_ray), number(m.triangle_tests_per_ray), number(m.out_of_steps_per_ray),
+          number(m.aabb_tests_per_ray), number(m.triangle_tests_per_ray), number(m.out_of_steps_per_ray), number(m.field_samples_per_ray),
           number(m.prepare_ms), number(m.build_ms), number(m.structure_bytes), m.check_size, number(m.hit_agreement),
           number(m.id_agreement), number(m.psnr), m.agreement, m.budget_cut ? "1" : "0", m.device, m.driver, m.embree,
           m.cpu, std::to_string(m.threads), m.commit};
+  const std::vector<std::string>& columns = measurement_columns();
+  auto at = fields.begin() + (std::find(columns.begin(), columns.end(), "storage_tables") - columns.begin() + 1);
+  for (const ParamSpec& spec : param_specs()) {
+    const auto it = m.backend_params.find(spec.name);
+    at = fields.insert(at, it != m.backend_params.end() ? it->second : "") + 1;
+  }
+  return fields;
 }
 
 std::string configuration_key(const std::vector<std::string>& fields, const std::vector<std::string>& columns) {

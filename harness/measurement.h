@@ -1,6 +1,7 @@
 #pragma once
 // One benchmark measurement = one CSV row (README, "CSV columns"): the configuration that
 // produced it, its figures, its image agreement with the reference and where it ran.
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,6 +27,9 @@ struct Measurement {
   std::string lists;                        // "exact" or "thesis" (--lists)
   std::string hit;                          // "exact" or "thesis" (--hit)
   std::optional<double> max_steps, hit_epsilon, hit_footprint, over_relax, cell_bound, storage_tables;
+  // the parameters the row's backend family owns (renderers/backend_params.h), by name; the
+  // columns of every family, empty where the backend is of another
+  std::map<std::string, std::string> backend_params;
   // the run's methodology, as requested (--frames, --warmup, --budget-s, --reference, --device, ...)
   unsigned requested_frames = 0, warmup = 0;
   double budget_s = 0;
@@ -41,7 +45,7 @@ struct Measurement {
   double ms_median = 0, ms_min = 0, ms_max = 0, ms_wall_median = 0, fps = 0, mrays_per_s = 0, rays_per_pixel = 0;
   // work counters of the instrumented check frame, per ray; empty: the backend has no such counter
   std::optional<double> steps_per_ray, instance_evals_per_ray, triangle_evals_per_ray, aabb_tests_per_ray,
-      triangle_tests_per_ray, out_of_steps_per_ray;
+      triangle_tests_per_ray, out_of_steps_per_ray, field_samples_per_ray;
   double prepare_ms = 0;                                 // renderer prepare(): structure build or cache load + upload
   std::optional<double> build_ms, structure_bytes;       // SDF structures
   // agreement with the reference backend at the check size

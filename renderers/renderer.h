@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "renderers/backend_params.h"
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "renderers/sdf/scene_hash.h"
 #include "renderers/sdf/sdf_cache.h"
@@ -35,6 +36,8 @@ struct BackendOptions {
   bool hash_cell_given = false;     // --hash-cell given; otherwise sdf-hash uses the thesis' cell 1
   sdf::SphereTraceParams tracing;
   sdf::CacheOptions cache;          // --cache FILE, --on-bad-cache
+  // Parameters each backend family owns (backend_params.h: sdf-bricks' --voxels, --sdf-format, ...).
+  BackendParams params;
   // SDF Vulkan backends: #defines prepended to the kernel (the time-breakdown variants of
   // tests/bench/sdf_kernel_bench.cpp); empty for every real run.
   std::string kernel_defines;
@@ -98,7 +101,7 @@ class Renderer {
 };
 
 const std::vector<std::string>& backend_names();
-bool is_sdf_backend(const std::string& name);  // sdf-hash, sdf-octree, sdf-cpu: they sphere-trace
+bool is_sdf_backend(const std::string& name);  // sdf-hash, sdf-octree, sdf-bricks, sdf-cpu: they sphere-trace
 // Throws Error for an unknown name, listing the known ones.
 void check_backend_name(const std::string& name);
 // Throws Error for an unknown name (as check_backend_name) or a device the backend cannot use.

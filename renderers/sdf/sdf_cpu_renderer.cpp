@@ -14,6 +14,7 @@ SdfCpuRenderer::SdfCpuRenderer(const BackendOptions& options) : options_(options
     throw Error(std::string("sdf-cpu: ") + (options.tracing.cell_bound ? "--cell-bound" : "--storage-tables") +
                 " is an option of the Vulkan SDF kernels (sdf-hash, sdf-octree)");
   sdf::validate(options.scene_hash);
+  sdf::check_exact_field_hit(options.tracing.hit, "sdf-cpu");
 }
 
 std::string SdfCpuRenderer::device_name() const { return cpu_model() + " (" + std::to_string(threads_) + " threads)"; }

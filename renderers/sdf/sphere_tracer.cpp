@@ -7,6 +7,7 @@
 #include "renderers/frame_params.h"
 #include "renderers/sdf/exact_hit.h"
 #include "renderers/sdf/triangle_distance.h"
+#include "util/error.h"
 
 namespace sdfbench::sdf {
 namespace {
@@ -22,6 +23,22 @@ glm::vec2 barycentric(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b
 }
 
 }  // namespace
+
+std::string to_string(HitMode hit) {
+  switch (hit) {
+    case HitMode::exact: return "exact";
+    case HitMode::thesis: return "thesis";
+    case HitMode::field: return "field";
+  }
+  return "?";
+}
+
+void check_exact_field_hit(HitMode hit, const std::string& backend) {
+  if (hit == HitMode::field && backend != "sdf-bricks")
+    throw Error("--hit field: " + backend + " has no sampled field (only sdf-bricks); use --hit exact or thesis");
+  if (hit == HitMode::thesis && backend == "sdf-bricks")
+    throw Error("--hit thesis: sdf-bricks takes exact hits (default) or the field's own (--hit field)");
+}
 
 SphereTracer::SphereTracer(const Scene& scene, const SceneSdf& sdf, const SphereTraceParams& params)
     : scene_(scene),

@@ -2,6 +2,7 @@
 // CPU reference sphere tracer (Hart 1996) over the scene SDF, with the parameters the GPU
 // backends use; its closest_hit/any_hit plug into the shared shading program.
 #include <cstdint>
+#include <string>
 
 #include "renderers/sdf/exact_hit.h"
 #include "renderers/sdf/scene_hash.h"
@@ -13,8 +14,12 @@ namespace sdfbench::sdf {
 
 // Where a converged ray hits: `exact` intersects it with the triangles listed there (exact_hit.h;
 // the default: t, normal and uv where the ray meets the surface, as in Embree); `thesis` takes the
-// converged point and the closest point on the nearest triangle (thesis 5.2).
-enum class HitMode { exact, thesis };
+// converged point and the closest point on the nearest triangle (thesis 5.2); `field` (sdf-bricks
+// only) the sampled field's own zero crossing and gradient normal (sdf_bricks.comp).
+enum class HitMode { exact, thesis, field };
+std::string to_string(HitMode hit);
+// Throws Error for --hit field on a backend without a sampled field (all but sdf-bricks).
+void check_exact_field_hit(HitMode hit, const std::string& backend);
 
 struct SphereTraceParams {
   uint32_t max_steps = 512;

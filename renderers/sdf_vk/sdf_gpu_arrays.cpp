@@ -38,7 +38,11 @@ float box_box_distance(const glm::vec3& lo_a, const glm::vec3& hi_a, const Aabb&
 // `instance_boxes` (--cell-bound, else null): each leaf's bound, the least distance from its box to
 // a listed instance's box. The traced distance at any point of the leaf is the least over the listed
 // instances, each at least its box's distance (triangles and grid bounds lie inside the box).
-void flatten_hash(const sdf::SceneHash& hash, const std::vector<Aabb>* instance_boxes, SdfGpuArrays& out) {
+// `overlap_boxes` (sdf-bricks, else null): each leaf's list in the same set, those instances whose
+// box meets the leaf's box first, their count in the list's second word (instead of a bound): a
+// ray's segment inside the leaf can only hit those.
+void flatten_hash(const sdf::SceneHash& hash, const std::vector<Aabb>* instance_boxes, const std::vector<Aabb>* overlap_boxes,
+                  SdfGpuArrays& out) {
   // Neighbouring leaves often list the same instances: a leaf equal to the previous one shares
   // its list (thesis:bunny:1000, octree: 69 -> 25 MB of lists).
   size_t previous = 0;
@@ -47,22 +51,34 @@ void flatten_hash(const sdf::SceneHash& hash, const std::vector<Aabb>* instance_
   std::function<uint32_t(uint32_t, glm::vec3, float)> encode = [&](uint32_t index, glm::vec3 lo, float size) -> uint32_t {
     const sdf::OctreeNode& node = hash.nodes[index];
     if (node.first_child < 0) {
-      const auto list = hash.instance_lists.begin() + node.list_begin;
+      std::vector<uint32_t> ordered(hash.instance_lists.begin() + node.list_begin,
+                                    hash.instance_lists.begin() + node.list_begin + node.list_count);
+      const auto list = ordered.begin();
+      uint32_t second_word = 0;
+      if (overlap_boxes) {
+        const glm::vec3 hi = lo + size;
+        const auto overlapping = std::stable_partition(ordered.begin(), ordered.end(), [&](uint32_t i) {
+          const Aabb& b = (*overlap_boxes)[i];
+          return glm::all(glm::lessThanEqual(b.min, hi + slack)) && glm::all(glm::lessThanEqual(lo - slack, b.max));
+        });
+        second_word = static_cast<uint32_t>(overlapping - ordered.begin());
+      }
       float bound = 0.0f;
       if (instance_boxes && node.list_count > 0) {
         bound = std::numeric_limits<float>::max();
         for (auto it = list; it != list + node.list_count; ++it)
           bound = std::min(bound, box_box_distance(lo, lo + size, (*instance_boxes)[*it]));
         bound = std::max(bound - slack, 0.0f);
+        second_word = bits(bound);
       }
       const bool same = !out.instance_lists.empty() && out.instance_lists[previous] == node.list_count &&
-                        out.instance_lists[previous + 1] == bits(bound) &&
+                        out.instance_lists[previous + 1] == second_word &&
                         std::equal(list, list + node.list_count, out.instance_lists.begin() + previous + 2);
       if (!same) {
         previous = out.instance_lists.size();
         check_word(previous, "instance-list entries");
         out.instance_lists.push_back(node.list_count);
-        out.instance_lists.push_back(bits(bound));
+        out.instance_lists.push_back(second_word);
         out.instance_lists.insert(out.instance_lists.end(), list, list + node.list_count);
       }
       return SDF_LEAF_BIT | static_cast<uint32_t>(previous);
@@ -94,7 +110,8 @@ void flatten_hash(const sdf::SceneHash& hash, const std::vector<Aabb>* instance_
 
 }  // namespace
 
-SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const sdf::SphereTraceParams& tracing) {
+SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const sdf::SphereTraceParams& tracing,
+                             LeafLists leaf_lists) {
   SdfGpuArrays out;
   const sdf::SceneHash& hash = sdf.hash;
   out.params.hash_origin = glm::vec4(hash.origin, hash.cell_size);
@@ -104,7 +121,10 @@ SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const
                 tracing.footprint, 0.0f);
   out.params.options = glm::vec4(tracing.over_relax, 0.0f, 0.0f, 0.0f);
   const sdf::TraceCulling culling = sdf::make_trace_culling(scene, sdf);
-  flatten_hash(hash, tracing.cell_bound ? &culling.instance_boxes : nullptr, out);
+  if (tracing.cell_bound && leaf_lists == LeafLists::overlapping_first)
+    throw Error("internal: --cell-bound and overlap-first lists share a word");
+  flatten_hash(hash, tracing.cell_bound ? &culling.instance_boxes : nullptr,
+               leaf_lists == LeafLists::overlapping_first ? &culling.instance_boxes : nullptr, out);
 
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];

@@ -27,7 +27,13 @@ struct SdfGpuArrays {
   std::vector<glm::vec4> vertices, normals;  // 3 per global triangle
 };
 
+// How a leaf's instance list is stored: as built (the list's second word is --cell-bound's bound),
+// or (sdf-bricks) the same instances with those whose box meets the leaf's box first and their
+// count in the second word.
+enum class LeafLists { as_built, overlapping_first };
+
 // Throws Error when an index would not fit the 31-bit node words.
-SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const sdf::SphereTraceParams& tracing);
+SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const sdf::SphereTraceParams& tracing,
+                             LeafLists leaf_lists = LeafLists::as_built);
 
 }  // namespace sdfbench

@@ -18,7 +18,8 @@ struct SdfParams {
 // A node word, the same in the hash-cell table (each cell's octree root) and the octree-node
 // table: with SDF_LEAF_BIT set, the low 31 bits are the offset of the leaf's instance list
 // (its length; a lower bound on the distance from the leaf's box to any listed instance's box,
-// float bits, 0 without --cell-bound; then the instance indices); clear, the word is the index of the node's 8
+// float bits, 0 without --cell-bound (sdf-bricks: how many of the listed instances' boxes meet the
+// leaf's box, listed first); then the instance indices); clear, the word is the index of the node's 8
 // children (octant bit 0: +x, 1: +y, 2: +z). A hash-only structure is a leaf per cell; eight
 // sibling leaves with the same list are stored as their parent, a leaf.
 #define SDF_LEAF_BIT 0x80000000u

@@ -2,7 +2,7 @@
 #include <string>
 
 #include "renderers/renderer.h"
-#include "renderers/vulkan/gpu_buffer.h"
+#include "renderers/sdf_vk/sdf_gpu_tables.h"
 #include "renderers/vulkan/vulkan_context.h"
 #include "renderers/vulkan/vulkan_frame_runner.h"
 
@@ -28,8 +28,7 @@ class SdfVkRenderer : public Renderer {
   BackendOptions options_;
   std::optional<StructureStats> stats_;  // of the CPU structures the GPU tables were flattened from
   VulkanContext context_;
-  GpuBuffer params_, hash_cells_, octree_nodes_, instance_lists_, instance_records_, mesh_records_, grid_cells_,
-      grid_entries_, vertices_, normals_;
+  SdfGpuTables tables_;
   VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
 };
 

@@ -1,0 +1,75 @@
+#pragma once
+// A per-mesh sampled distance field as Unreal Engine 5's mesh distance fields store it (issue 28):
+// sparse bricks of 8^3 samples (7^3 cells plus a border sample shared with the neighbour, so a
+// trilinear lookup never crosses a brick), an indirection table with one entry per brick
+// ("empty" outside a narrow band), and a coarse level (one sample per brick corner) for empty
+// space. Values are sdfbench's exact signed mesh distance (mesh_distance_grid.h) at the lattice
+// points, clamped to the band and stored as f32, f16 or u8.
+//
+// What a sample gives is a *lower bound* on the distance to the mesh, never an estimate that may
+// overshoot: for stored values v_i with |v_i| <= u(c_i) (u the unsigned distance; clamping and
+// the exact grid's far-cell bounds keep that), |trilinear(v)(p)| <= u(p) + delta(p) with
+// delta(p) = h sqrt(sum over axes f(1 - f)) <= h sqrt(3)/2 (f: p's fractions in its cell; Jensen
+// on sum w_i |c_i - p|), and quantization adds at most `quantization` per value. So
+// |trilinear| - delta - quantization <= u(p), for any mesh, open or closed; in an empty brick
+// u >= band everywhere. The tracers step by that bound and find hits exactly (exact_hit.h), or,
+// with --hit field, take the field's own zero crossing.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "renderers/sdf/mesh_distance_grid.h"
+#include "scenes/mesh.h"
+
+namespace sdfbench::sdf {
+
+enum class SdfFormat { f32, f16, u8 };
+std::string to_string(SdfFormat format);
+size_t bytes_per_sample(SdfFormat format);
+
+struct BrickFieldParams {
+  uint32_t voxels = 64;  // --voxels: lattice cells along the mesh's largest extent
+  uint32_t band = 4;     // --brick-band: bricks within this many voxels of the surface are stored
+  SdfFormat format = SdfFormat::f32;  // --sdf-format
+  // --max-structure-mb: the build stops with an Error when the atlas would pass this. Not a
+  // parameter of the result.
+  uint64_t max_bytes = kDefaultMaxStructureBytes;
+};
+
+inline constexpr uint32_t kBrickCells = 7;    // unique cells per brick and axis
+inline constexpr uint32_t kBrickSide = 8;     // samples per brick and axis (the border shared)
+inline constexpr uint32_t kBrickSamples = kBrickSide * kBrickSide * kBrickSide;
+inline constexpr uint32_t kEmptyBrick = UINT32_MAX;
+inline constexpr uint32_t kMaxVoxels = 1024;
+
+struct BrickField {
+  glm::vec3 origin{0.0f};  // lattice point (0, 0, 0); point (i, j, k) at origin + voxel * (i, j, k)
+  float voxel = 0.0f;      // lattice spacing h, mesh units
+  glm::uvec3 bricks{0u};   // bricks per axis; the lattice has kBrickCells * bricks + 1 points per axis
+  SdfFormat format = SdfFormat::f32;
+  float band = 0.0f;        // band x voxel: stored values are clamped to [-band, band]
+  float quantization = 0.0f;  // the most a stored value differs from the clamped exact one
+  std::vector<uint32_t> indirection;  // per brick (x fastest): its index in the atlas, or kEmptyBrick
+  std::vector<uint8_t> atlas;         // kBrickSamples per stored brick, x fastest, in `format`
+  std::vector<float> coarse;          // exact signed distance at each brick corner, (bricks + 1)^3, x fastest
+  double build_ms = 0;
+
+  size_t brick_count() const { return indirection.size(); }
+  size_t stored_bricks() const { return atlas.size() / (kBrickSamples * bytes_per_sample(format)); }
+  glm::uvec3 coarse_dims() const { return bricks + 1u; }
+  glm::vec3 box_max() const { return origin + voxel * glm::vec3(bricks * kBrickCells); }
+  size_t bytes() const;  // indirection, atlas and coarse level
+};
+
+// Throws Error for voxels outside 4..kMaxVoxels or band outside 1..16. Built in parallel
+// (TBB); the result does not depend on the thread count.
+void validate(const BrickFieldParams& params);
+BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& grid, const BrickFieldParams& params);
+
+// The stored sample `index` of the atlas, decoded as the kernels' texel fetch decodes it
+// (f16 -> float exactly, u8 as UNORM q / 255 mapped to [-band, band]).
+float atlas_value(const BrickField& field, size_t index);
+
+}  // namespace sdfbench::sdf

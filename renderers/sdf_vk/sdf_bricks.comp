@@ -1,0 +1,380 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
+// sdf-bricks (issue 28): the thesis' scene hash and octree lists, exactly as sdf-octree reads them,
+// but a mesh's distance comes from its sampled brick field (renderers/sdf/brick_field.h) instead of
+// its exact per-cell triangle lists. Two ways to use the lists:
+//  - per instance (default, as Unreal Engine 5 traces mesh distance fields): the ray walks the
+//    leaves it crosses; in each, every listed instance whose box the ray's segment meets is
+//    sphere-traced through its own field, in its own frame, over that segment only, with the
+//    segment's end clamped to the best hit so far;
+//  - BRICK_TRACE_MIN (--brick-trace min, the thesis' way): sphere tracing with the minimum over the
+//    leaf's instances at every step.
+// Hits: the field's bound is a true lower bound (brick_sample.glsl), so wherever it falls below
+// BRICK_NEAR_VOXELS the next BRICK_WINDOW_VOXELS of the ray are tested against the triangles the
+// exact mesh grid lists there (exact_crossing): the hit is the ray's crossing with the mesh, as
+// Embree's. BRICK_HIT_FIELD (--hit field): the field's own zero crossing (UE5: below a quarter
+// voxel), refined by secant steps, its normal the field's gradient; no triangle.
+
+#include "frame_bindings.glsl"
+#include "sdf_scene_distance.glsl"
+#define TRAVERSAL_OVERFLOW sdf_cut
+#include "ray_box.glsl"
+#include "ray_triangle.glsl"
+#include "sdf_exact_crossing.glsl"
+
+layout(binding = 18) uniform utextureBuffer brick_records;  // RGBA32UI, BRICK_FIELD_TEXELS per mesh
+layout(binding = 19) uniform utextureBuffer brick_slots;    // R32UI stored-brick index per brick, or BRICK_EMPTY
+layout(binding = 20) uniform textureBuffer brick_atlas;     // R32F / R16F / R8_UNORM, 8^3 samples per stored brick
+layout(binding = 21) uniform textureBuffer brick_coarse;    // R32F, one sample per brick corner
+
+uvec4 brick_record(int i) { return texelFetch(brick_records, i); }
+uint brick_slot(int i) { return texelFetch(brick_slots, i).x; }
+float brick_value(int i) { return texelFetch(brick_atlas, i).x; }
+float coarse_value(int i) { return texelFetch(brick_coarse, i).x; }
+float brick_decode(float raw, float band) {
+#ifdef BRICK_U8
+  return (raw * 2.0f - 1.0f) * band;
+#else
+  return raw;
+#endif
+}
+#include "brick_sample.glsl"
+
+#define BRICK_NEAR_VOXELS 1.0f
+#define BRICK_WINDOW_VOXELS 2.0f
+#define BRICK_FIELD_HIT_VOXELS 0.25f
+// The most leaves one ray walks (a bound on the loop; a pixel past it is reported cut short).
+#define BRICK_MAX_LEAVES 65536u
+
+// A ray in an instance's frame (t is the same parameter in both) with its field.
+struct InstanceRay {
+  vec3 o, d;
+  float scale;  // world units per mesh unit
+  BrickFieldInfo f;
+};
+
+InstanceRay instance_ray(uint instance, Ray ray) {
+  int record = int(instance) * SDF_INSTANCE_TEXELS;
+  InstanceRay r;
+  r.o = transform_point(record + 2, ray.origin);
+  r.d = transform_direction(record + 2, ray.dir);
+  r.scale = uintBitsToFloat(SDF_FETCH(instance_records, record + 1).w);
+  r.f = brick_field_info(SDF_FETCH(instance_records, record).w);
+  return r;
+}
+
+FieldSample sample_at(InstanceRay r, float t) {
+  COUNT(COUNTER_FIELD_SAMPLES, 1u);
+  return sample_field(r.f, r.o + t * r.d);
+}
+
+// The steps of the pixel's current ray, against --max-steps (sdf.hash_dims.w).
+uint ray_steps;
+
+// --hit field: the hit's world normal and the ray's result.
+vec3 field_normal;
+
+// The field's gradient at object point q (central differences half a voxel apart), in world space.
+vec3 field_gradient(InstanceRay r, int record, vec3 q) {
+  float e = 0.5f * r.f.voxel;
+  vec3 g;
+  for (int axis = 0; axis < 3; ++axis) {
+    vec3 step = vec3(0.0f);
+    step[axis] = e;
+    COUNT(COUNTER_FIELD_SAMPLES, 2u);
+    g[axis] = sample_field(r.f, q + step).value - sample_field(r.f, q - step).value;
+  }
+  // Normals go to world space by the transpose of world_to_object (rows at record + 2).
+  vec3 n = g.x * uintBitsToFloat(SDF_FETCH(instance_records, record + 2).xyz) +
+           g.y * uintBitsToFloat(SDF_FETCH(instance_records, record + 3).xyz) +
+           g.z * uintBitsToFloat(SDF_FETCH(instance_records, record + 4).xyz);
+  return length(n) > 0.0f ? normalize(n) : -normalize(vec3(1.0f));
+}
+
+// --hit field: secant steps on the last bracket, from (t0, v0) (the step before, above the hit
+// threshold) and (t1, v1) (below it), each kept within [t0, t1 + a voxel].
+float refine_field_hit(InstanceRay r, float t0, float v0, float t1, float v1) {
+  float limit = t1 + r.f.voxel * r.scale;
+  for (int k = 0; k < 3 && v0 != v1; ++k) {
+    float t = clamp(t1 - v1 * (t1 - t0) / (v1 - v0), t0, limit);
+    float v = sample_at(r, t).value * r.scale;
+    t0 = t1;
+    v0 = v1;
+    t1 = t;
+    v1 = v;
+  }
+  return t1;
+}
+
+struct BrickHit {
+  float t;
+  uint instance;
+  uint triangle;  // SDF_NONE for a field hit
+  vec2 uv;
+};
+
+#ifndef BRICK_TRACE_MIN
+// One instance over the ray's [t_lo, t_hi] (world t): sphere tracing by the field's bound; near
+// the surface the exact window test (or, BRICK_HIT_FIELD, the field's own crossing). Out of steps,
+// the rest of the segment goes to the exact test at once, so no surface is skipped.
+bool trace_instance(Ray ray, uint instance, float t_lo, float t_hi, inout BrickHit best) {
+  InstanceRay r = instance_ray(instance, ray);
+  float t = t_lo, t_end = t_hi;
+  clip_to_box(r.o, r.d, r.f.origin, brick_lattice_max(r.f), t, t_end);
+  float voxel = r.f.voxel * r.scale;
+#ifdef BRICK_HIT_FIELD
+  float t_previous = t, v_previous = SDF_FAR;
+  for (; t <= t_end && ray_steps < sdf.hash_dims.w; ++ray_steps) {
+    COUNT(COUNTER_STEPS, 1u);
+    float v = sample_at(r, t).value * r.scale;
+    if (v < BRICK_FIELD_HIT_VOXELS * voxel) {
+      float th = v_previous == SDF_FAR ? t : refine_field_hit(r, t_previous, v_previous, t, v);
+      if (th >= best.t) return false;
+      best = BrickHit(th, instance, SDF_NONE, vec2(0.0f));
+      field_normal = field_gradient(r, int(instance) * SDF_INSTANCE_TEXELS, r.o + th * r.d);
+      return true;
+    }
+    t_previous = t;
+    v_previous = v;
+    t += v;
+  }
+  if (t <= t_end) COUNT(COUNTER_OUT_OF_STEPS, 1u);
+  return false;
+#else
+  float near = BRICK_NEAR_VOXELS * voxel, window = BRICK_WINDOW_VOXELS * voxel;
+  while (t <= t_end) {
+    float bound = 0.0f;
+    if (ray_steps < sdf.hash_dims.w) {
+      ++ray_steps;
+      COUNT(COUNTER_STEPS, 1u);
+      bound = sample_at(r, t).bound * r.scale;
+      if (bound >= near) {
+        t += bound;
+        continue;
+      }
+    } else {
+      COUNT(COUNTER_OUT_OF_STEPS, 1u);
+      window = t_end - t;  // out of steps: the rest in one exact test
+    }
+    float t_window = min(t + max(window, bound), t_end);
+    float th;
+    uint triangle;
+    vec2 uv;
+    if (exact_crossing(ray, t, t_window, instance, th, triangle, uv)) {
+      if (th >= best.t) return false;
+      best = BrickHit(th, instance, triangle, uv);
+      return true;
+    }
+    if (t_window >= t_end) break;
+    t = t_window;
+  }
+  return false;
+#endif
+}
+
+// The leaves the ray crosses, from the hash box's near side on; the segment of each goes to its
+// listed instances whose world boxes it meets, ending at the best hit so far.
+bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
+  best = BrickHit(tmax, SDF_NONE, SDF_NONE, vec2(0.0f));
+  float t, t1;
+  if (!clip_to_hash_box(ray, tmax, t, t1)) return false;
+  vec3 lo = sdf.hash_origin.xyz;
+  vec3 hi = lo + vec3(sdf.hash_dims.xyz) * sdf.hash_origin.w;
+  // A leaf's exit point lies on its face: the next leaf is looked up a hair beyond it.
+  float nudge = 1e-5f * sdf.hash_origin.w;
+  ray_steps = 0u;
+  bool found = false;
+  for (uint leaves = 0u;; ++leaves) {
+    if (leaves == BRICK_MAX_LEAVES) {
+      sdf_cut = true;
+      return false;
+    }
+    float probe = t + max(nudge, 1e-6f * abs(t));
+    vec3 leaf_lo, leaf_hi;
+    uint word = find_leaf(clamp(ray.origin + probe * ray.dir, lo, hi), leaf_lo, leaf_hi);
+    if (sdf_cut) return false;
+    float t_in = t, t_exit = t1;
+    clip_to_box(ray.origin, ray.dir, leaf_lo, leaf_hi, t_in, t_exit);
+    t_exit = min(max(t_exit, probe), t1);
+    // Only the listed instances whose boxes meet the leaf's (listed first) can be hit inside it.
+    int list = int(word & ~SDF_LEAF_BIT);
+    uint count = SDF_FETCH(instance_lists, list + 1).x;
+    for (uint k = 0u; k < count; ++k) {
+      uint i = SDF_FETCH(instance_lists, list + 2 + int(k)).x;
+      int record = int(i) * SDF_INSTANCE_TEXELS;
+      float s0 = t, s1 = min(t_exit, best.t);
+      COUNT(COUNTER_AABB_TESTS, 1u);
+      clip_to_box(ray.origin, ray.dir, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
+                  uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz), s0, s1);
+      if (s0 > s1) continue;
+      COUNT(COUNTER_INSTANCE_EVALS, 1u);
+      found = trace_instance(ray, i, s0, s1, best) || found;
+    }
+    if (found || t_exit >= t1) break;
+    // Beyond the leaf's exit point q, the next surface is at least as far as the nearest box of
+    // the instances the leaf lists (every instance that can be the closest one to a point of the
+    // leaf, q included; each surface lies in its box): the walk goes on from there, past the
+    // empty leaves in between.
+    vec3 q = ray.origin + t_exit * ray.dir;
+    float clear = SDF_FAR;
+    uint listed = SDF_FETCH(instance_lists, list).x;
+    for (uint k = 0u; k < listed && clear > 0.0f; ++k) {
+      int record = int(SDF_FETCH(instance_lists, list + 2 + int(k)).x) * SDF_INSTANCE_TEXELS;
+      COUNT(COUNTER_AABB_TESTS, 1u);
+      clear = min(clear, box_distance(q, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
+                                      uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz)));
+    }
+    t = t_exit + clear;
+    if (t > t1) break;
+  }
+  return found;
+}
+
+#else  // BRICK_TRACE_MIN
+
+struct ScenePoint {
+  float bound;     // world units: the least bound over the leaf's instances
+  float value;     // --hit field: the least field value
+  uint instance;   // whose
+  float voxel;     // its voxel in world units
+  vec3 leaf_lo, leaf_hi;
+  uint word;
+};
+
+ScenePoint scene_point(Ray ray, float t) {
+  vec3 lo = sdf.hash_origin.xyz;
+  vec3 hi = lo + vec3(sdf.hash_dims.xyz) * sdf.hash_origin.w;
+  vec3 p = clamp(ray.origin + t * ray.dir, lo, hi);
+  ScenePoint s;
+  s.word = find_leaf(p, s.leaf_lo, s.leaf_hi);
+  s.bound = SDF_FAR;
+  s.value = SDF_FAR;
+  s.instance = SDF_NONE;
+  s.voxel = 0.0f;
+  int list = int(s.word & ~SDF_LEAF_BIT);
+  uint count = sdf_cut ? 0u : SDF_FETCH(instance_lists, list).x;
+  for (uint k = 0u; k < count; ++k) {
+    uint i = SDF_FETCH(instance_lists, list + 2 + int(k)).x;
+    int record = int(i) * SDF_INSTANCE_TEXELS;
+    COUNT(COUNTER_AABB_TESTS, 1u);
+    float box = box_distance(p, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
+                             uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz));
+    if (box >= s.value) continue;
+    COUNT(COUNTER_INSTANCE_EVALS, 1u);
+    InstanceRay r = instance_ray(i, ray);
+    FieldSample f = sample_at(r, t);
+#ifdef BRICK_HIT_FIELD
+    float v = f.value * r.scale;
+#else
+    float v = f.bound * r.scale;
+#endif
+    if (v < s.value) {
+      s.value = v;
+      s.bound = f.bound * r.scale;
+      s.instance = i;
+      s.voxel = r.f.voxel * r.scale;
+    }
+  }
+  return s;
+}
+
+// Sphere tracing by the least bound over the leaf's instances (the thesis' step); near a surface,
+// the exact window test of every listed instance whose box the window meets (the window ends at
+// the leaf's side, so the leaf's list covers it).
+bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
+  best = BrickHit(tmax, SDF_NONE, SDF_NONE, vec2(0.0f));
+  float t, t1;
+  if (!clip_to_hash_box(ray, tmax, t, t1)) return false;
+  float t_previous = t, v_previous = SDF_FAR;
+  uint previous_instance = SDF_NONE;
+  for (uint steps = 0u; t <= t1; ++steps) {
+    if (steps >= sdf.hash_dims.w) {
+      COUNT(COUNTER_OUT_OF_STEPS, 1u);
+      return false;
+    }
+    COUNT(COUNTER_STEPS, 1u);
+    ScenePoint s = scene_point(ray, t);
+    if (sdf_cut) return false;
+#ifdef BRICK_HIT_FIELD
+    if (s.instance != SDF_NONE && s.value < BRICK_FIELD_HIT_VOXELS * s.voxel) {
+      InstanceRay r = instance_ray(s.instance, ray);
+      float th = previous_instance == s.instance ? refine_field_hit(r, t_previous, v_previous, t, s.value) : t;
+      best = BrickHit(th, s.instance, SDF_NONE, vec2(0.0f));
+      field_normal = field_gradient(r, int(s.instance) * SDF_INSTANCE_TEXELS, r.o + th * r.d);
+      return th < tmax;
+    }
+    t_previous = t;
+    v_previous = s.value;
+    previous_instance = s.instance;
+    t += max(s.value, 1e-6f * abs(t));
+#else
+    if (s.instance == SDF_NONE || s.bound >= BRICK_NEAR_VOXELS * s.voxel) {
+      t += max(s.bound, 1e-6f * abs(t));
+      continue;
+    }
+    float t_leaf = t, t_exit = t1;
+    clip_to_box(ray.origin, ray.dir, s.leaf_lo, s.leaf_hi, t_leaf, t_exit);
+    float t_window = min(t + max(BRICK_WINDOW_VOXELS * s.voxel, s.bound), max(min(t_exit, t1), t + 1e-6f * abs(t)));
+    bool found = false;
+    int list = int(s.word & ~SDF_LEAF_BIT);
+    uint count = SDF_FETCH(instance_lists, list + 1).x;  // those whose boxes meet the leaf's, listed first
+    for (uint k = 0u; k < count; ++k) {
+      uint i = SDF_FETCH(instance_lists, list + 2 + int(k)).x;
+      int record = int(i) * SDF_INSTANCE_TEXELS;
+      float s0 = t, s1 = min(t_window, best.t);
+      clip_to_box(ray.origin, ray.dir, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
+                  uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz), s0, s1);
+      if (s0 > s1) continue;
+      float th;
+      uint triangle;
+      vec2 uv;
+      if (exact_crossing(ray, s0, s1, i, th, triangle, uv) && th < best.t) {
+        best = BrickHit(th, i, triangle, uv);
+        found = true;
+      }
+    }
+    if (found) return true;
+    t = t_window;
+#endif
+  }
+  return false;
+}
+#endif
+
+bool closest_hit(Ray ray, float tmax, out Hit hit) {
+  BrickHit b;
+  if (!trace_bricks(ray, tmax, b) || b.t >= tmax) return false;
+  int record = int(b.instance) * SDF_INSTANCE_TEXELS;
+  uvec4 o0 = SDF_FETCH(instance_records, record + 5);
+  hit.t = max(b.t, 0.0f);
+  hit.instance = b.instance;
+  hit.material = o0.w;
+  hit.uv = b.uv;
+  if (b.triangle == SDF_NONE) {
+    hit.prim = NO_INSTANCE;
+    hit.normal = field_normal;
+    return true;
+  }
+  int n = int(3u * b.triangle);
+  vec3 normal = interpolate_barycentric(SDF_FETCH(tri_normals, n).xyz, SDF_FETCH(tri_normals, n + 1).xyz,
+                                        SDF_FETCH(tri_normals, n + 2).xyz, b.uv);
+  vec3 o1 = uintBitsToFloat(SDF_FETCH(instance_records, record + 6).xyz);
+  vec3 o2 = uintBitsToFloat(SDF_FETCH(instance_records, record + 7).xyz);
+  uint mesh = SDF_FETCH(instance_records, record).w;
+  uint first_triangle = SDF_FETCH(mesh_records, int(mesh) * SDF_MESH_TEXELS + 2).w;
+  hit.prim = b.triangle - first_triangle;
+  hit.normal = normalize(vec3(dot(uintBitsToFloat(o0.xyz), normal), dot(o1, normal), dot(o2, normal)));
+  return true;
+}
+
+// Exact hits lie on the surface; a field hit lies within a fraction of a voxel of it, so rays
+// leave it from farther out (sdf.options.y: a few of the scene's largest voxels).
+float mesh_hit_tolerance() { return sdf.options.y; }
+
+bool any_hit(Ray ray, float tmax) {
+  BrickHit b;
+  return trace_bricks(ray, tmax, b) && b.t < tmax;
+}
+
+#include "render_main.glsl"

@@ -1,0 +1,42 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "renderers/renderer.h"
+#include "renderers/sdf/brick_field.h"
+#include "renderers/sdf_vk/sdf_gpu_tables.h"
+#include "renderers/vulkan/gpu_buffer.h"
+#include "renderers/vulkan/vulkan_context.h"
+#include "renderers/vulkan/vulkan_frame_runner.h"
+
+namespace sdfbench {
+
+// sdf-bricks (issue 28): the thesis' scene hash and octree lists (as sdf-octree) over per-mesh
+// sampled brick fields (renderers/sdf/brick_field.h), sphere-traced in sdf_bricks.comp. Its
+// parameters are its own (backend_params.h): --voxels, --sdf-format, --brick-band, --brick-trace.
+class SdfBricksRenderer : public Renderer {
+ public:
+  explicit SdfBricksRenderer(const BackendOptions& options);
+  std::string name() const override { return "sdf-bricks"; }
+  std::string device_name() const override { return context_.info().name; }
+  std::string driver_name() const override { return context_.info().driver + " " + context_.info().driver_info; }
+  void prepare(const Scene& scene) override;
+  FrameResult render(const FrameRequest& request) override { return runner_.run(request); }
+  uint32_t validation_messages() const override { return context_.validation_messages(); }
+  std::optional<StructureStats> structure_stats() const override { return stats_; }
+
+ private:
+  BackendOptions options_;
+  sdf::BrickFieldParams field_params_;
+  std::optional<StructureStats> stats_;  // mesh grids + scene hash + brick fields
+  VulkanContext context_;
+  SdfGpuTables tables_;
+  GpuBuffer brick_records_, brick_slots_, brick_atlas_, brick_coarse_;
+  VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
+};
+
+// The brick field parameters of `params` (--voxels, --sdf-format, --brick-band); throws Error
+// for values outside their ranges.
+sdf::BrickFieldParams brick_field_params(const BackendParams& params, uint64_t max_bytes);
+
+}  // namespace sdfbench
