@@ -110,7 +110,9 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   const Clock::time_point prepare_start = Clock::now();
   renderer->prepare(s);
   m.prepare_ms = seconds_since(prepare_start) * 1e3;
-  if (const auto stats = renderer->structure_stats()) {
+  const std::optional<StructureStats> stats = renderer->structure_stats();
+  if (stats) {
+    m.backend_resolved = stats->resolved;
     m.build_ms = stats->build_ms;
     m.structure_bytes = static_cast<double>(stats->bytes);
   }
@@ -163,9 +165,11 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   if (config.backend == settings_.reference) {
     m.agreement = "reference";
   } else {
-    const Agreement g = compare_frames(checked.images, reference(config));
+    const Agreement g = compare_frames(checked.images, reference(config), stats ? stats->instance_voxels : std::vector<float>{});
     m.hit_agreement = g.hit_percent;
     m.id_agreement = g.id_percent;
+    m.depth_p99 = g.depth_p99;
+    m.depth_p99_voxels = g.depth_p99_voxels;
     m.psnr = g.psnr;
     const std::string failed = check_thresholds(g, settings_.thresholds);
     m.agreement = failed.empty() ? "ok" : "DISAGREE: " + failed;

@@ -24,11 +24,13 @@ struct CompareArgs {
   BackendOptions backend_options;
 };
 
+// `instance_voxels` (nullable): a sampled field's voxel per instance (StructureStats).
 FrameImages render_once(const std::string& backend, const BackendOptions& options, const Scene& scene,
-                        const FrameRequest& request, std::string& device) {
+                        const FrameRequest& request, std::string& device, std::vector<float>* instance_voxels = nullptr) {
   std::unique_ptr<Renderer> renderer = create_renderer(backend, options);
   renderer->prepare(scene);
   device = renderer->device_name();
+  if (const auto stats = renderer->structure_stats(); stats && instance_voxels) *instance_voxels = stats->instance_voxels;
   FrameResult frame = renderer->render(request);
   if (const std::string error = truncation_error(backend, frame); !error.empty()) throw Error(error);
   if (const uint32_t messages = renderer->validation_messages(); messages > 0)
@@ -70,14 +72,16 @@ void run_compare(const CompareArgs& args) {
   int failures = 0;
   for (const std::string& backend : backends) {
     if (backend == args.reference) continue;
-    const FrameImages images = render_once(backend, args.backend_options, scene, request, device);
+    std::vector<float> voxels;
+    const FrameImages images = render_once(backend, args.backend_options, scene, request, device, &voxels);
     if (!args.out_dir.empty()) write_color_image(images, std::filesystem::path(args.out_dir) / (backend + ".png"));
-    const Agreement g = compare_frames(images, reference);
+    const Agreement g = compare_frames(images, reference, voxels);
     const std::string failed = check_thresholds(g, args.thresholds);
     failures += !failed.empty();
     std::printf("%-12s %8.3f %8.3f %11.3g %10.3g %9.3g %9.2f %8.3f  %s\n", backend.c_str(), g.hit_percent, g.id_percent,
                 g.depth_p99, g.mean_error, g.rms_error, g.psnr, g.over_threshold_percent,
                 failed.empty() ? "ok" : ("FAIL: " + failed).c_str());
+    if (g.depth_p99_voxels) std::printf("%-12s depth error p99: %.3g voxels of its sampled field\n", "", *g.depth_p99_voxels);
     std::fflush(stdout);
   }
   const AgreementThresholds& t = args.thresholds;

@@ -43,12 +43,12 @@ ColourDifference colour_difference(const FrameImages& a, const FrameImages& b, f
 
 }  // namespace
 
-Agreement compare_frames(const FrameImages& test, const FrameImages& reference) {
+Agreement compare_frames(const FrameImages& test, const FrameImages& reference, const std::vector<float>& instance_voxels) {
   if (test.width != reference.width || test.height != reference.height || test.color.empty())
     throw Error("internal: compared frames differ in size or hold no pixels");
   const size_t pixels = test.color.size();
   size_t hit_agree = 0, id_candidates = 0, id_agree = 0;
-  std::vector<double> depth_errors;
+  std::vector<double> depth_errors, voxel_errors;
   for (size_t i = 0; i < pixels; ++i) {
     const uint32_t a = test.instance_id[i], b = reference.instance_id[i];
     hit_agree += is_instance(a) == is_instance(b);
@@ -58,16 +58,20 @@ Agreement compare_frames(const FrameImages& test, const FrameImages& reference) 
     }
     if (a == b && a != shading::NO_INSTANCE_VALUE && reference.depth[i] > 0.0f)
       depth_errors.push_back(std::abs(test.depth[i] - reference.depth[i]) / reference.depth[i]);
+    if (a == b && is_instance(a) && a < instance_voxels.size() && instance_voxels[a] > 0.0f)
+      voxel_errors.push_back(std::abs(test.depth[i] - reference.depth[i]) / instance_voxels[a]);
   }
+  auto p99 = [](std::vector<double>& errors) {
+    const size_t k = std::min(errors.size() - 1, static_cast<size_t>(0.99 * static_cast<double>(errors.size())));
+    std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k), errors.end());
+    return errors[k];
+  };
   Agreement result;
   result.hit_percent = 100.0 * static_cast<double>(hit_agree) / static_cast<double>(pixels);
   result.id_percent = id_candidates ? 100.0 * static_cast<double>(id_agree) / static_cast<double>(id_candidates) : 100.0;
   result.id_mismatches = id_candidates - id_agree;
-  if (!depth_errors.empty()) {
-    const size_t k = std::min(depth_errors.size() - 1, static_cast<size_t>(0.99 * static_cast<double>(depth_errors.size())));
-    std::nth_element(depth_errors.begin(), depth_errors.begin() + static_cast<std::ptrdiff_t>(k), depth_errors.end());
-    result.depth_p99 = depth_errors[k];
-  }
+  if (!depth_errors.empty()) result.depth_p99 = p99(depth_errors);
+  if (!instance_voxels.empty()) result.depth_p99_voxels = voxel_errors.empty() ? 0.0 : p99(voxel_errors);
   const ColourDifference colour = colour_difference(test, reference, kPixelFailThreshold);
   result.mean_error = colour.mean;
   result.rms_error = colour.rms;

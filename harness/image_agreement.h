@@ -1,4 +1,6 @@
 #pragma once
+#include <optional>
+#include <vector>
 // How closely a backend's frame matches a reference frame (DESIGN.md, "Image agreement").
 #include <string>
 
@@ -11,6 +13,9 @@ struct Agreement {
   double id_percent = 0;         // same instance id, over pixels where either hit an instance
   size_t id_mismatches = 0;      // pixels where either hit an instance and the ids differ
   double depth_p99 = 0;          // 99th percentile of |t - t_ref| / t_ref where both hit the same thing
+  // Given the test's voxel per instance (a sampled field): the 99th percentile of |t - t_ref| in
+  // voxels of the instance hit, where both hit the same instance.
+  std::optional<double> depth_p99_voxels;
   double mean_error = 0;         // shaded image (display-encoded RGB), as OpenImageIO compare
   double rms_error = 0;
   double psnr = 0;               // dB; infinity for identical images
@@ -29,7 +34,8 @@ struct AgreementThresholds {
 
 inline constexpr float kPixelFailThreshold = 0.05f;
 
-Agreement compare_frames(const FrameImages& test, const FrameImages& reference);
+Agreement compare_frames(const FrameImages& test, const FrameImages& reference,
+                         const std::vector<float>& instance_voxels = {});
 
 // Empty when every threshold holds, else a list of what failed.
 std::string check_thresholds(const Agreement& agreement, const AgreementThresholds& thresholds);

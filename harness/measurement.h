@@ -48,9 +48,12 @@ struct Measurement {
       triangle_tests_per_ray, out_of_steps_per_ray, field_samples_per_ray;
   double prepare_ms = 0;                                 // renderer prepare(): structure build or cache load + upload
   std::optional<double> build_ms, structure_bytes;       // SDF structures
+  std::string backend_resolved;  // what the backend chose for its "auto" parameters (StructureStats::resolved)
   // agreement with the reference backend at the check size
   std::string check_size;
   std::optional<double> hit_agreement, id_agreement, psnr;
+  // relative depth error (p99) where both hit the same instance; a sampled field's also in its voxels
+  std::optional<double> depth_p99, depth_p99_voxels;
   std::string agreement;  // "ok", "reference", "DISAGREE: <what>", "TRUNCATED: <n> pixels" or "ERROR: <message>"
   bool budget_cut = false;
   // where

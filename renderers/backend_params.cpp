@@ -27,6 +27,10 @@ const std::vector<ParamSpec>& param_specs() {
        "instance: each listed instance traced through its own field, t clamped to the best hit (UE5); "
        "min: the thesis' per-step minimum over the leaf's instances",
        {"instance", "min"}},
+      {"brick_fetch", "sdf-bricks", "auto",
+       "texel: 8 texel-buffer fetches and the trilinear in the kernel; sampler: the atlas as a 3D image the sampler "
+       "filters; auto: by device, from the measurement (README, \"sdf-bricks\"); the row's backend_resolved says which",
+       {"auto", "texel", "sampler"}},
   };
   return specs;
 }

@@ -85,6 +85,12 @@ struct FrameResult {
 struct StructureStats {
   double build_ms = 0;
   uint64_t bytes = 0;
+  // A sampled field's voxel per instance, in world units (sdf-bricks; empty for exact structures):
+  // its depth error is also reported in voxels.
+  std::vector<float> instance_voxels;
+  // What the backend chose for a parameter given as "auto" ("brick_fetch=sampler"); the CSV's
+  // backend_resolved column.
+  std::string resolved;
 };
 
 class Renderer {

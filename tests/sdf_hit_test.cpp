@@ -1,8 +1,8 @@
 // SDF hits that agree with Embree beyond the thesis scenes (--hit exact, the default): a camera
 // very close to a surface, a grazing view along a large flat panel, scales 0.001 and 1000 in one
 // scene, overlapping instances, a camera inside a box whose walls lie on hash-cell faces, and
-// thesis:bunny:1000 in whitted mode. Every SDF backend, primary and shadow, at the default
-// `compare` thresholds; sdf-cpu is the reference of the kernels.
+// thesis:bunny:1000 in whitted mode. Every SDF backend (sdf-bricks with either --brick-trace),
+// primary and shadow, at the default `compare` thresholds; sdf-cpu is the reference of the kernels.
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -16,7 +16,13 @@
 namespace sdfbench {
 namespace {
 
-constexpr const char* kSdfBackends[] = {"sdf-cpu", "sdf-hash", "sdf-octree"};
+// Each SDF backend; sdf-bricks (exact hits) with each way of tracing the lists.
+struct SdfVariant {
+  const char* backend;
+  const char* brick_trace;  // sdf-bricks' --brick-trace, else null
+};
+constexpr SdfVariant kSdfBackends[] = {
+    {"sdf-cpu", nullptr}, {"sdf-hash", nullptr}, {"sdf-octree", nullptr}, {"sdf-bricks", "instance"}, {"sdf-bricks", "min"}};
 constexpr RenderMode kModes[] = {RenderMode::Primary, RenderMode::Shadow};
 constexpr uint32_t kGrazingSteps = 48;
 
@@ -90,8 +96,11 @@ void expect_agreement(const Scene& scene, const BackendOptions& options = {}, ui
   size_t instance_pixels = 0;
   for (uint32_t id : reference.instance_id) instance_pixels += id < shading::FLOOR_INSTANCE_VALUE;
   EXPECT_GE(instance_pixels, reference.instance_id.size() / 20) << scene.name;
-  for (const char* backend : kSdfBackends) {
-    auto renderer = create_renderer(backend, options);
+  for (const SdfVariant& variant : kSdfBackends) {
+    BackendOptions variant_options = options;
+    if (variant.brick_trace) variant_options.params.set("brick_trace", variant.brick_trace);
+    const std::string backend = variant.brick_trace ? std::string(variant.backend) + " " + variant.brick_trace : variant.backend;
+    auto renderer = create_renderer(variant.backend, variant_options);
     renderer->prepare(scene);
     for (RenderMode mode : kModes) {
       const FrameRequest request{width, height, mode, true};
@@ -227,7 +236,7 @@ TEST(SdfHit, ThesisBunnyThousandWhitted) {
   const FrameImages expected = embree->render(request).images;
   AgreementThresholds thresholds;
   thresholds.min_psnr = 35.0;
-  for (const char* backend : {"sdf-hash", "sdf-octree"}) {
+  for (const char* backend : {"sdf-hash", "sdf-octree", "sdf-bricks"}) {
     auto renderer = create_renderer(backend, BackendOptions{});
     renderer->prepare(scene);
     const Agreement g = compare_frames(renderer->render(request).images, expected);

@@ -40,7 +40,7 @@ TEST_P(SdfVkVsEmbree, ImagesAgreeUnderValidation) {
   EXPECT_EQ(renderer->validation_messages(), 0u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, SdfVkVsEmbree, testing::Values("sdf-hash", "sdf-octree"), [](const auto& info) {
+INSTANTIATE_TEST_SUITE_P(Backends, SdfVkVsEmbree, testing::Values("sdf-hash", "sdf-octree", "sdf-bricks"), [](const auto& info) {
   std::string name = info.param;
   name.erase(name.find('-'), 1);
   return name;

@@ -85,7 +85,8 @@ float atlas_value(const BrickField& field, size_t index) {
   return 0.0f;
 }
 
-BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& grid, const BrickFieldParams& params) {
+BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_grid, const MeshGridParams& grid_params,
+                             const BrickFieldParams& params) {
   validate(params);
   const auto start = std::chrono::steady_clock::now();
   BrickField field;
@@ -106,6 +107,18 @@ BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& grid, con
   const size_t brick_count = size_t(field.bricks.x) * field.bricks.y * field.bricks.z;
   const glm::uvec3 corners = field.coarse_dims();
   const float brick_size = float(kBrickCells) * field.voxel;
+
+  // Exact samples everywhere on the lattice: outside its box the mesh grid gives only a bound.
+  MeshDistanceGrid wider;
+  const bool inside = glm::all(glm::greaterThanEqual(field.origin, given_grid.origin)) &&
+                      glm::all(glm::lessThanEqual(field.box_max(), given_grid.box_max()));
+  if (!inside) {
+    MeshGridParams p = grid_params;
+    const glm::vec3 reach = glm::max(given_grid.origin - field.origin, field.box_max() - given_grid.box_max());
+    p.margin_cells += std::ceil(std::max({reach.x, reach.y, reach.z}) / given_grid.cell_size) + 1.0f;
+    wider = build_mesh_distance_grid(mesh, p);
+  }
+  const MeshDistanceGrid& grid = inside ? given_grid : wider;
 
   // Coarse level: the exact signed distance at each brick corner (unclamped).
   field.coarse.resize(size_t(corners.x) * corners.y * corners.z);

@@ -1,6 +1,8 @@
 #include "renderers/sdf_vk/brick_gpu_arrays.h"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <limits>
 
@@ -42,6 +44,32 @@ BrickGpuArrays flatten_brick_fields(const std::vector<sdf::BrickField>& fields) 
     index32(out.atlas.size() / sdf::bytes_per_sample(out.format), "samples");
   }
   return out;
+}
+
+BrickAtlasImage arrange_atlas_image(const BrickGpuArrays& arrays, uint32_t max_extent) {
+  const size_t sample_bytes = sdf::bytes_per_sample(arrays.format);
+  const size_t stored = arrays.atlas.size() / (sdf::kBrickSamples * sample_bytes);
+  BrickAtlasImage image;
+  const uint32_t per_axis = std::max(1u, max_extent / sdf::kBrickSide);
+  const uint32_t side = static_cast<uint32_t>(std::ceil(std::cbrt(double(std::max<size_t>(stored, 1)))));
+  image.bricks.x = std::min(side, per_axis);
+  image.bricks.y = std::min(side, per_axis);
+  image.bricks.z = static_cast<uint32_t>((std::max<size_t>(stored, 1) + size_t(image.bricks.x) * image.bricks.y - 1) /
+                                         (size_t(image.bricks.x) * image.bricks.y));
+  image.extent = image.bricks * sdf::kBrickSide;  // (a z beyond the device's limit: GpuImage3D says so)
+  image.texels.assign(size_t(image.extent.x) * image.extent.y * image.extent.z * sample_bytes, 0);
+  const size_t row = size_t(image.extent.x), slice = row * image.extent.y;
+  for (size_t s = 0; s < stored; ++s) {
+    const glm::uvec3 b(s % image.bricks.x, (s / image.bricks.x) % image.bricks.y, s / (size_t(image.bricks.x) * image.bricks.y));
+    const glm::uvec3 corner = b * sdf::kBrickSide;
+    for (uint32_t z = 0; z < sdf::kBrickSide; ++z)
+      for (uint32_t y = 0; y < sdf::kBrickSide; ++y) {
+        const size_t from = (s * sdf::kBrickSamples + sdf::kBrickSide * (y + sdf::kBrickSide * z)) * sample_bytes;
+        const size_t to = (corner.x + row * (corner.y + y) + slice * (corner.z + z)) * sample_bytes;
+        std::memcpy(&image.texels[to], &arrays.atlas[from], sdf::kBrickSide * sample_bytes);
+      }
+  }
+  return image;
 }
 
 namespace shading {

@@ -23,6 +23,15 @@ struct BrickGpuArrays {
 // Throws Error when a table would not fit the kernel's 32-bit indices.
 BrickGpuArrays flatten_brick_fields(const std::vector<sdf::BrickField>& fields);
 
+// --brick-fetch sampler: the stored bricks side by side in a 3D image, `bricks` per axis (x, then
+// y, then z: brick s at (s % x, s / x % y, s / (x y))), the image `extent` = 8 x bricks texels.
+struct BrickAtlasImage {
+  glm::uvec3 bricks{1u};
+  glm::uvec3 extent{8u};
+  std::vector<uint8_t> texels;  // x fastest, in the arrays' format
+};
+BrickAtlasImage arrange_atlas_image(const BrickGpuArrays& arrays, uint32_t max_extent);
+
 namespace shading {
 // brick_sample.glsl compiled as C++ over flattened arrays: the same arithmetic as the kernel.
 class BrickCpuSampler {

@@ -6,6 +6,11 @@
 //   float brick_value(int i)   atlas sample i as the texel fetch returns it (u8: UNORM in [0, 1])
 //   float brick_decode(float raw, float band)  that in mesh units (identity but for u8:
 //                              (2 raw - 1) band; linear, so it is applied after interpolating)
+// and with BRICK_SAMPLER (--brick-fetch sampler: the atlas as a filtered 3D image):
+//   float brick_filtered(uint slot, vec3 local)  the hardware's trilinear sample of stored brick
+//                              `slot` at `local` (in samples, 0..7), as the texel fetch returns it
+//   float brick_filter_slack(float voxel, float band)  how far that may be from the exact trilinear
+//                              (filter weights of subTexelPrecisionBits, the filter's arithmetic)
 //   float coarse_value(int i)  coarse sample i (exact signed distance at a brick corner)
 #ifndef SDFBENCH_BRICK_SAMPLE_GLSL
 #define SDFBENCH_BRICK_SAMPLE_GLSL
@@ -98,6 +103,10 @@ SHARED_FN FieldSample sample_field(BrickFieldInfo f, vec3 p) {
     return s;
   }
   uvec3 l = c - b * BRICK_CELLS;
+#ifdef BRICK_SAMPLER
+  s.value = brick_decode(brick_filtered(slot, vec3(l) + fr), f.band);
+  s.bound = max(abs(s.value) - trilinear_slack(fr, f.voxel) - f.quantization - brick_filter_slack(f.voxel, f.band), 0.0f);
+#else
   int i = int(slot) * (BRICK_SIDE * BRICK_SIDE * BRICK_SIDE) + int(l.x) + BRICK_SIDE * (int(l.y) + BRICK_SIDE * int(l.z));
   const int sy = BRICK_SIDE, sz = BRICK_SIDE * BRICK_SIDE;
   s.value = brick_decode(trilinear(brick_value(i), brick_value(i + 1), brick_value(i + sy), brick_value(i + sy + 1),
@@ -105,6 +114,7 @@ SHARED_FN FieldSample sample_field(BrickFieldInfo f, vec3 p) {
                                    brick_value(i + sz + sy + 1), fr),
                          f.band);
   s.bound = max(abs(s.value) - trilinear_slack(fr, f.voxel) - f.quantization, 0.0f);
+#endif
   s.stored = true;
   return s;
 }

@@ -25,12 +25,24 @@
 
 layout(binding = 18) uniform utextureBuffer brick_records;  // RGBA32UI, BRICK_FIELD_TEXELS per mesh
 layout(binding = 19) uniform utextureBuffer brick_slots;    // R32UI stored-brick index per brick, or BRICK_EMPTY
-layout(binding = 20) uniform textureBuffer brick_atlas;     // R32F / R16F / R8_UNORM, 8^3 samples per stored brick
 layout(binding = 21) uniform textureBuffer brick_coarse;    // R32F, one sample per brick corner
+#ifdef BRICK_SAMPLER
+// The stored bricks side by side in a 3D image (sdf.atlas_bricks per row and slice), filtered by
+// the sampler: one fetch per sample instead of eight.
+layout(binding = 20) uniform sampler3D brick_atlas;
+float brick_filtered(uint slot, vec3 local) {
+  uvec3 b = uvec3(slot % sdf.atlas_bricks.x, (slot / sdf.atlas_bricks.x) % sdf.atlas_bricks.y,
+                  slot / (sdf.atlas_bricks.x * sdf.atlas_bricks.y));
+  return textureLod(brick_atlas, (vec3(b * 8u) + local + 0.5f) * sdf.atlas_inverse_size.xyz, 0.0f).x;
+}
+float brick_filter_slack(float voxel, float band) { return sdf.options.z * voxel + band * (1.0f / 1024.0f); }
+#else
+layout(binding = 20) uniform textureBuffer brick_atlas;     // R32F / R16F / R8_UNORM, 8^3 samples per stored brick
+float brick_value(int i) { return texelFetch(brick_atlas, i).x; }
+#endif
 
 uvec4 brick_record(int i) { return texelFetch(brick_records, i); }
 uint brick_slot(int i) { return texelFetch(brick_slots, i).x; }
-float brick_value(int i) { return texelFetch(brick_atlas, i).x; }
 float coarse_value(int i) { return texelFetch(brick_coarse, i).x; }
 float brick_decode(float raw, float band) {
 #ifdef BRICK_U8
@@ -290,7 +302,18 @@ bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
   uint previous_instance = SDF_NONE;
   for (uint steps = 0u; t <= t1; ++steps) {
     if (steps >= sdf.hash_dims.w) {
+      // A grazing ray creeping along a surface: the rest of its segment goes to the exact test of
+      // the instance nearest to its last point (as sdf-octree).
       COUNT(COUNTER_OUT_OF_STEPS, 1u);
+#ifndef BRICK_HIT_FIELD
+      float th;
+      uint triangle;
+      vec2 uv;
+      if (previous_instance != SDF_NONE && exact_crossing(ray, t_previous, t1, previous_instance, th, triangle, uv)) {
+        best = BrickHit(th, previous_instance, triangle, uv);
+        return true;
+      }
+#endif
       return false;
     }
     COUNT(COUNTER_STEPS, 1u);
@@ -309,6 +332,8 @@ bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
     previous_instance = s.instance;
     t += max(s.value, 1e-6f * abs(t));
 #else
+    t_previous = t;
+    previous_instance = s.instance;
     if (s.instance == SDF_NONE || s.bound >= BRICK_NEAR_VOXELS * s.voxel) {
       t += max(s.bound, 1e-6f * abs(t));
       continue;

@@ -12,7 +12,10 @@ struct SdfParams {
   vec4 tracing;      // x: hit epsilon in world units (hit_epsilon x scene scale), y: 1 for --hit exact,
                      // z: --hit-footprint (exact: the hit threshold as a fraction of a pixel's footprint),
                      // w: 0 (a zero the compiler cannot see: SDF_REPEAT_* in sdf_scene_distance.glsl)
-  vec4 options;      // x: --over-relax omega (1: off), yzw: 0
+  vec4 options;      // x: --over-relax omega (1: off); sdf-bricks: y: the hit tolerance of rays leaving
+                     // a hit (mesh_hit_tolerance), z: the sampler's filter slack in voxels; w: 0
+  uvec4 atlas_bricks;       // sdf-bricks with --brick-fetch sampler: bricks per image row (x) and slice (y); zw: 0
+  vec4 atlas_inverse_size;  // its 1 / image extent (xyz); w: 0
 };
 
 // A node word, the same in the hash-cell table (each cell's octree root) and the octree-node

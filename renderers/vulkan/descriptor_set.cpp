@@ -38,6 +38,7 @@ DescriptorSet::DescriptorSet(const VulkanContext& context, const std::vector<Ker
     // Sized up front: the writes point into these vectors.
     std::vector<VkDescriptorBufferInfo> buffer_infos(bindings.size());
     std::vector<VkBufferView> views(bindings.size());
+    std::vector<VkDescriptorImageInfo> image_infos(bindings.size());
     std::vector<VkWriteDescriptorSetAccelerationStructureKHR> structures(bindings.size());
     std::vector<VkWriteDescriptorSet> writes;
     for (size_t i = 0; i < bindings.size(); ++i) {
@@ -52,6 +53,9 @@ DescriptorSet::DescriptorSet(const VulkanContext& context, const std::vector<Ker
         structures[i].accelerationStructureCount = 1;
         structures[i].pAccelerationStructures = &b.acceleration_structure;
         w.pNext = &structures[i];
+      } else if (b.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) {
+        image_infos[i] = {b.image->sampler(), b.image->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        w.pImageInfo = &image_infos[i];
       } else if (b.type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
         views[i] = b.buffer->view();
         w.pTexelBufferView = &views[i];

@@ -1,20 +1,22 @@
 #pragma once
 // One descriptor set (and its layout and pool) holding a list of bound buffers, texel buffers or
-// acceleration structures: what a compute or ray-tracing pipeline of a backend reads.
+// acceleration structures or sampled 3D images: what a compute or ray-tracing pipeline of a backend reads.
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
 #include "renderers/vulkan/gpu_buffer.h"
+#include "renderers/vulkan/gpu_image.h"
 #include "renderers/vulkan/vulkan_context.h"
 
 namespace sdfbench {
 
 struct KernelBinding {
   uint32_t binding;
-  VkDescriptorType type;  // UNIFORM_BUFFER, STORAGE_BUFFER, UNIFORM_TEXEL_BUFFER or ACCELERATION_STRUCTURE_KHR
+  VkDescriptorType type;  // UNIFORM_BUFFER, STORAGE_BUFFER, UNIFORM_TEXEL_BUFFER, ACCELERATION_STRUCTURE_KHR or COMBINED_IMAGE_SAMPLER
   const GpuBuffer* buffer = nullptr;
   VkAccelerationStructureKHR acceleration_structure = VK_NULL_HANDLE;  // ACCELERATION_STRUCTURE_KHR only
+  const GpuImage3D* image = nullptr;  // COMBINED_IMAGE_SAMPLER only
 };
 
 class DescriptorSet {
