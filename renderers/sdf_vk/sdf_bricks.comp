@@ -59,6 +59,16 @@ float brick_decode(float raw, float band) {
 // The most leaves one ray walks (a bound on the loop; a pixel past it is reported cut short).
 #define BRICK_MAX_LEAVES 65536u
 
+// A rounding error of the ray's point at t (relative to its coordinates, not the scene: scales
+// 0.001 and 1000 share scenes). A segment's exact test reaches this far past a leaf's (or the
+// hash box's) far side, where a surface lying on that face (walls on hash-cell faces, a panel on
+// the hash box) is crossed; and a leaf is looked up this far along, so that at a face the leaf
+// found is the one the ray enters.
+float face_slack(Ray ray, float t) {
+  vec3 p = abs(ray.origin + t * ray.dir);
+  return 1e-5f * max(max(max(p.x, p.y), max(p.z, abs(t))), 1e-30f);
+}
+
 // A ray in an instance's frame (t is the same parameter in both) with its field.
 struct InstanceRay {
   vec3 o, d;
@@ -193,8 +203,6 @@ bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
   if (!clip_to_hash_box(ray, tmax, t, t1)) return false;
   vec3 lo = sdf.hash_origin.xyz;
   vec3 hi = lo + vec3(sdf.hash_dims.xyz) * sdf.hash_origin.w;
-  // A leaf's exit point lies on its face: the next leaf is looked up a hair beyond it.
-  float nudge = 1e-5f * sdf.hash_origin.w;
   ray_steps = 0u;
   bool found = false;
   for (uint leaves = 0u;; ++leaves) {
@@ -202,7 +210,7 @@ bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
       sdf_cut = true;
       return false;
     }
-    float probe = t + max(nudge, 1e-6f * abs(t));
+    float probe = t + face_slack(ray, t);
     vec3 leaf_lo, leaf_hi;
     uint word = find_leaf(clamp(ray.origin + probe * ray.dir, lo, hi), leaf_lo, leaf_hi);
     if (sdf_cut) return false;
@@ -215,7 +223,7 @@ bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
     for (uint k = 0u; k < count; ++k) {
       uint i = SDF_FETCH(instance_lists, list + 2 + int(k)).x;
       int record = int(i) * SDF_INSTANCE_TEXELS;
-      float s0 = t, s1 = min(t_exit, best.t);
+      float s0 = t, s1 = min(t_exit + face_slack(ray, t_exit), best.t);
       COUNT(COUNTER_AABB_TESTS, 1u);
       clip_to_box(ray.origin, ray.dir, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
                   uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz), s0, s1);
@@ -330,24 +338,26 @@ bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
     t_previous = t;
     v_previous = s.value;
     previous_instance = s.instance;
-    t += max(s.value, 1e-6f * abs(t));
+    t += max(s.value, face_slack(ray, t));
 #else
     t_previous = t;
     previous_instance = s.instance;
     if (s.instance == SDF_NONE || s.bound >= BRICK_NEAR_VOXELS * s.voxel) {
-      t += max(s.bound, 1e-6f * abs(t));
+      t += s.bound;
       continue;
     }
     float t_leaf = t, t_exit = t1;
     clip_to_box(ray.origin, ray.dir, s.leaf_lo, s.leaf_hi, t_leaf, t_exit);
-    float t_window = min(t + max(BRICK_WINDOW_VOXELS * s.voxel, s.bound), max(min(t_exit, t1), t + 1e-6f * abs(t)));
+    // (At least a hair: at a leaf's face, the leaf found may be the one the ray is leaving.)
+    float t_window = min(t + max(BRICK_WINDOW_VOXELS * s.voxel, s.bound), max(min(t_exit, t1), t + face_slack(ray, t)));
+    float t_test = t_window + face_slack(ray, t_window);
     bool found = false;
     int list = int(s.word & ~SDF_LEAF_BIT);
     uint count = SDF_FETCH(instance_lists, list + 1).x;  // those whose boxes meet the leaf's, listed first
     for (uint k = 0u; k < count; ++k) {
       uint i = SDF_FETCH(instance_lists, list + 2 + int(k)).x;
       int record = int(i) * SDF_INSTANCE_TEXELS;
-      float s0 = t, s1 = min(t_window, best.t);
+      float s0 = t, s1 = min(t_test, best.t);
       clip_to_box(ray.origin, ray.dir, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
                   uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz), s0, s1);
       if (s0 > s1) continue;
