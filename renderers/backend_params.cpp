@@ -20,7 +20,7 @@ const std::vector<ParamSpec>& param_specs() {
   // sdf-bricks: the per-mesh brick fields (renderers/sdf/brick_field.h) and how sdf_bricks.comp
   // uses them. Defaults from the measurements in results/lavapipe/ (README, "sdf-bricks").
   static const std::vector<ParamSpec> specs = {
-      {"voxels", "sdf-bricks", "64", "brick field lattice cells along each mesh's largest extent", {}, 4, 1024},
+      {"voxels", "sdf-bricks", "128", "brick field lattice cells along each mesh's largest extent", {}, 4, 1024},
       {"sdf_format", "sdf-bricks", "f32", "stored field values: f32, f16 or u8 (a band-relative UNORM)", {"f32", "f16", "u8"}},
       {"brick_band", "sdf-bricks", "4", "bricks within this many voxels of the surface are stored", {}, 1, 16},
       {"brick_trace", "sdf-bricks", "instance",

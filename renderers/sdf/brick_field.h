@@ -30,7 +30,7 @@ std::string to_string(SdfFormat format);
 size_t bytes_per_sample(SdfFormat format);
 
 struct BrickFieldParams {
-  uint32_t voxels = 64;  // --voxels: lattice cells along the mesh's largest extent
+  uint32_t voxels = 128;  // --voxels: lattice cells along the mesh's largest extent
   uint32_t band = 4;     // --brick-band: bricks within this many voxels of the surface are stored
   SdfFormat format = SdfFormat::f32;  // --sdf-format
   // --max-structure-mb: the build stops with an Error when the atlas would pass this. Not a
