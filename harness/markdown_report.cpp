@@ -8,6 +8,8 @@
 #include <set>
 #include <sstream>
 
+#include "renderers/backend_params.h"
+
 namespace sdfbench {
 namespace {
 
@@ -129,19 +131,20 @@ void speedup_table(std::ostringstream& out, const std::vector<Row>& sdf, const s
   });
 }
 
-// The thesis' structure against the driver's BVH on the same device, in one mode: sdf-octree
-// FPS / vk-rt FPS (above 1: the SDF scene is faster).
-void driver_bvh_table(std::ostringstream& out, const std::string& mode, const std::vector<Row>& rows) {
-  std::vector<Row> sdf, rt;
+// Two backends on the same device, in one mode: a's FPS / b's (above 1: a is faster); `what`
+// says what the pair compares. Nothing when the rows lack either.
+void pair_table(std::ostringstream& out, const std::string& mode, const std::vector<Row>& rows, const std::string& a,
+                const std::string& b, const std::string& what) {
+  std::vector<Row> as, bs;
   for (const Row& r : rows) {
     if (r["agreement"].rfind("ERROR", 0) == 0) continue;
-    if (r["backend"] == "sdf-octree") sdf.push_back(r);
-    if (r["backend"] == "vk-rt") rt.push_back(r);
+    if (r["backend"] == a) as.push_back(r);
+    if (r["backend"] == b) bs.push_back(r);
   }
-  if (sdf.empty() || rt.empty()) return;
-  out << "### sdf-octree against the driver's BVH, " << mode << " mode (sdf-octree FPS / vk-rt FPS, " << sizes_of(rows)
-      << ")\n\n";
-  ratio_table(out, sdf, rt, [](const std::string&, size_t) { return std::string(); });
+  if (as.empty() || bs.empty()) return;
+  out << "### " << a << " against " << b << " (" << what << "), " << mode << " mode (" << a << " FPS / " << b << " FPS, "
+      << sizes_of(rows) << ")\n\n";
+  ratio_table(out, as, bs, [](const std::string&, size_t) { return std::string(); });
 }
 
 void backends_table(std::ostringstream& out, const std::string& mode, const std::vector<Row>& rows) {
@@ -171,7 +174,37 @@ void backends_table(std::ostringstream& out, const std::string& mode, const std:
   out << "\n";
 }
 
+// A sweep of a backend family's own parameters (renderers/backend_params.h): those columns, the
+// field's counters and its accuracy in voxels.
+void family_sweep_table(std::ostringstream& out, const std::vector<Row>& rows, const std::vector<ParamSpec>& specs) {
+  out << "### Sweep: " << rows.front()["scene"] << ", " << rows.front()["backend"] << ", " << rows.front()["mode"] << " ("
+      << sizes_of(rows) << ")\n\n|";
+  for (const ParamSpec& spec : specs) out << " " << spec.name << " |";
+  out << " hit | build ms | structure MB | FPS | Mrays/s | steps/ray | field samples/ray | triangle tests/ray | hit % | "
+         "id % | depth p99 | depth p99 (voxels) | PSNR dB |\n|";
+  for (size_t i = 0; i < specs.size() + 13; ++i) out << (i < specs.size() + 1 ? "---|" : "---:|");
+  out << "\n";
+  auto cell = [](const Row& r, const char* column, int digits) {
+    return r[column].empty() ? std::string("–") : fixed(r.number(column), digits);
+  };
+  for (const Row& r : rows) {
+    out << "|";
+    for (const ParamSpec& spec : specs) out << " " << r[spec.name] << " |";
+    out << " " << r["hit"] << " | " << fixed(r.number("build_ms"), 0) << " | " << fixed(r.number("structure_bytes") / 1e6, 1)
+        << " | " << fps_cell(r) << " | " << fixed(r.number("mrays_per_s"), 3) << " | " << cell(r, "steps_per_ray", 1) << " | "
+        << cell(r, "field_samples_per_ray", 1) << " | " << cell(r, "triangle_tests_per_ray", 1) << " | "
+        << cell(r, "hit_agreement", 2) << " | " << cell(r, "id_agreement", 2) << " | "
+        << (r["depth_p99"].empty() ? "–" : r["depth_p99"]) << " | " << cell(r, "depth_p99_voxels", 3) << " | "
+        << cell(r, "psnr", 1) << " |\n";
+  }
+  out << "\n";
+}
+
 void sweep_table(std::ostringstream& out, const std::vector<Row>& rows) {
+  std::vector<ParamSpec> specs;
+  for (const ParamSpec& spec : param_specs())
+    if (spec.family == rows.front()["backend"]) specs.push_back(spec);
+  if (!specs.empty()) return family_sweep_table(out, rows, specs);
   out << "### Sweep: " << rows.front()["scene"] << ", " << rows.front()["backend"] << ", " << rows.front()["mode"] << " ("
       << sizes_of(rows) << ")\n\n"
       << "| hash cell | octree depth | min objects | mesh cell | over-relax | cell bound | tables | build ms | structure MB | FPS | "
@@ -217,7 +250,9 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
   if (by_table.count("6.1") && by_table.count("6.3")) speedup_table(out, by_table["6.1"], by_table["6.3"], thesis);
   for (const auto& [mode, mode_rows] : by_mode) {
     backends_table(out, mode, mode_rows);
-    driver_bvh_table(out, mode, mode_rows);
+    pair_table(out, mode, mode_rows, "sdf-octree", "vk-rt", "the thesis' structure against the driver's BVH");
+    pair_table(out, mode, mode_rows, "sdf-bricks", "sdf-octree", "a sampled per-mesh field against the exact one");
+    pair_table(out, mode, mode_rows, "sdf-bricks", "bvh", "a sampled per-mesh field against a BVH in a compute kernel");
   }
   for (const std::vector<Row>& sweep : sweeps) sweep_table(out, sweep);
   if (rows.empty()) out << "(no measurements)\n";

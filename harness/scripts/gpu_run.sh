@@ -12,7 +12,9 @@
 #
 # Between the compares and the tables: the SDF tables in texel buffers against storage buffers
 # (`sweep --storage-tables 0,1`, sdf-octree and sdf-hash, primary and shadow, on --storage-scene
-# at --size), side by side in storage_vs_texel.csv/.md (lavapipe: texel buffers; a GPU may differ).
+# at --size), side by side in storage_vs_texel.csv/.md (lavapipe: texel buffers; a GPU may differ);
+# and sdf-bricks' two fetch paths (`--brick-fetch texel,sampler`: texel buffers with the kernel's
+# trilinear against the sampler's filtered 3D image), primary and shadow, in brick_fetch.csv/.md.
 #
 # On lavapipe, as a check of the script: --device lavapipe --size 64x36 --compare-size 64x36.
 # --binary defaults to $SDFBENCH, else build/sdfbench, else ./sdfbench (the launcher at the top
@@ -70,7 +72,7 @@ mkdir -p "$dir"
 echo "gpu_run: device '$name' -> $dir" >&2
 
 agreement="$dir/agreement.txt" disagreed=0
-backends=tri-aabb,bvh,sdf-hash,sdf-octree
+backends=tri-aabb,bvh,sdf-hash,sdf-octree,sdf-bricks
 if "$binary" render --scene thesis:sphere:1 --backend vk-rt --size 16x9 --frames 1 --warmup 0 --device "$device" >/dev/null 2>&1; then
   backends=$backends,vk-rt
 else
@@ -122,6 +124,23 @@ if [[ $tables_only -eq 0 ]]; then
     done
   done
   "$binary" merge "$parts"/*.csv --several-runs --csv "$dir/storage_vs_texel.csv" --markdown "$dir/storage_vs_texel.md" >/dev/null ||
+    die "merging $parts/*.csv failed"
+
+  # sdf-bricks' fetch paths, each pair side by side in one sweep.
+  parts="$dir/brick_fetch"
+  mkdir -p "$parts"
+  for mode in primary shadow; do
+    echo "gpu_run: sdf-bricks texel vs sampler fetch, $mode" >&2
+    status=0
+    "$binary" sweep --scene "$storage_scene" --backend sdf-bricks --mode "$mode" --size "$size" --frames "$frames" \
+      --budget-s "$budget" --brick-fetch texel,sampler --device "$device" --csv "$parts/$mode.csv" \
+      >"$parts/$mode.log" 2>&1 || status=$?
+    case $status in
+      0) ;; 2) disagreed=1 ;; 4) failed=1 ;;
+      *) die "the brick fetch sweep ($mode) failed; see $parts/$mode.log" ;;
+    esac
+  done
+  "$binary" merge "$parts"/*.csv --several-runs --csv "$dir/brick_fetch.csv" --markdown "$dir/brick_fetch.md" >/dev/null ||
     die "merging $parts/*.csv failed"
 fi
 

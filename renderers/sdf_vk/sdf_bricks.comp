@@ -73,6 +73,7 @@ float face_slack(Ray ray, float t) {
 struct InstanceRay {
   vec3 o, d;
   float scale;  // world units per mesh unit
+  uint mesh;
   BrickFieldInfo f;
 };
 
@@ -82,7 +83,8 @@ InstanceRay instance_ray(uint instance, Ray ray) {
   r.o = transform_point(record + 2, ray.origin);
   r.d = transform_direction(record + 2, ray.dir);
   r.scale = uintBitsToFloat(SDF_FETCH(instance_records, record + 1).w);
-  r.f = brick_field_info(SDF_FETCH(instance_records, record).w);
+  r.mesh = SDF_FETCH(instance_records, record).w;
+  r.f = brick_field_info(r.mesh);
   return r;
 }
 
@@ -183,7 +185,7 @@ bool trace_instance(Ray ray, uint instance, float t_lo, float t_hi, inout BrickH
     float th;
     uint triangle;
     vec2 uv;
-    if (exact_crossing(ray, t, t_window, instance, th, triangle, uv)) {
+    if (exact_crossing_in_mesh(r.o, r.d, r.mesh, t, t_window, th, triangle, uv)) {
       if (th >= best.t) return false;
       best = BrickHit(th, instance, triangle, uv);
       return true;

@@ -36,11 +36,10 @@ vec3 transform_direction(int row0, vec3 v) {
 // the nearest one to a point of the cell (a point on a triangle is nearest to it). False when
 // there is none: the ray passed that surface within epsilon (a silhouette). As
 // exact_crossing() in renderers/sdf/exact_hit.cpp.
-bool exact_crossing(Ray ray, float t_lo, float t_hi, uint instance, out float t_hit, out uint triangle, out vec2 uv) {
-  int record = int(instance) * SDF_INSTANCE_TEXELS;
-  vec3 o = transform_point(record + 2, ray.origin);
-  vec3 d = transform_direction(record + 2, ray.dir);  // t is the same parameter in both frames
-  int base = int(SDF_FETCH(instance_records, record).w) * SDF_MESH_TEXELS;
+// The ray is given in the mesh's frame (o + t d, t the world ray's parameter).
+bool exact_crossing_in_mesh(vec3 o, vec3 d, uint mesh, float t_lo, float t_hi, out float t_hit, out uint triangle,
+                            out vec2 uv) {
+  int base = int(mesh) * SDF_MESH_TEXELS;
   uvec4 r0 = SDF_FETCH(mesh_records, base);
   uvec4 r1 = SDF_FETCH(mesh_records, base + 1);
   vec3 origin = uintBitsToFloat(r0.xyz);
@@ -77,6 +76,14 @@ bool exact_crossing(Ray ray, float t_lo, float t_hi, uint instance, out float t_
     t_cell = max(t_exit, t_cell + 1e-6f * abs(t_cell));
   }
   return triangle != SDF_NONE;
+}
+
+// exact_crossing_in_mesh of a world ray with `instance`.
+bool exact_crossing(Ray ray, float t_lo, float t_hi, uint instance, out float t_hit, out uint triangle, out vec2 uv) {
+  int record = int(instance) * SDF_INSTANCE_TEXELS;
+  vec3 o = transform_point(record + 2, ray.origin);
+  vec3 d = transform_direction(record + 2, ray.dir);  // t is the same parameter in both frames
+  return exact_crossing_in_mesh(o, d, SDF_FETCH(instance_records, record).w, t_lo, t_hi, t_hit, triangle, uv);
 }
 
 #endif
