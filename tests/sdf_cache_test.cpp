@@ -219,6 +219,82 @@ TEST_F(SdfCacheTest, ResealedHostileFilesAreRefused) {
   }
 }
 
+// sdf-bricks' brick fields ride in the same file: a bit-identical round trip, a cache without
+// them (or with other parameters) stale for sdf-bricks but still good for the exact backends,
+// and hostile brick sections refused.
+TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
+  const sdf::BrickFieldParams bricks{16, 3, sdf::SdfFormat::f16};
+  sdf::SceneSdf with = sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), &bricks);
+  ASSERT_EQ(with.brick_fields.size(), scene_->meshes.size());
+  const fs::path path = dir_.path() / "bricks.sdfcache";
+  sdf::write_sdf_cache(path, *scene_, with, small_grid());
+  const sdf::SceneSdf loaded = sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), &bricks);
+  ASSERT_EQ(loaded.brick_fields.size(), 1u);
+  const sdf::BrickField &a = with.brick_fields[0], &b = loaded.brick_fields[0];
+  EXPECT_EQ(a.origin, b.origin);
+  EXPECT_EQ(a.voxel, b.voxel);
+  EXPECT_EQ(a.bricks, b.bricks);
+  EXPECT_EQ(a.band, b.band);
+  EXPECT_EQ(a.quantization, b.quantization);
+  EXPECT_EQ(a.indirection, b.indirection);
+  EXPECT_EQ(a.atlas, b.atlas);
+  EXPECT_EQ(a.coarse, b.coarse);
+  const fs::path again = dir_.path() / "bricks-again.sdfcache";
+  sdf::write_sdf_cache(again, *scene_, loaded, small_grid());
+  EXPECT_EQ(read_all(path), read_all(again));
+  EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash()));  // the exact backends ignore them
+  const sdf::BrickFieldParams other{16, 3, sdf::SdfFormat::u8};
+  try {
+    sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), &other);
+    ADD_FAILURE() << "a cache with other brick parameters was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--sdf-format f16, requested"), std::string::npos) << e.what();
+  }
+  try {
+    sdf::load_sdf_cache(write_valid(), *scene_, small_grid(), small_hash(), &bricks);
+    ADD_FAILURE() << "a cache without brick fields was accepted for sdf-bricks";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("holds no brick fields"), std::string::npos) << e.what();
+  }
+  const Bytes valid = read_all(path);
+  const sdf::SdfCacheContents c = sdf::decode_sdf_cache(valid, "valid");
+  auto section = [&](const std::string& name) {
+    for (const sdf::SdfCacheSection& s : c.sections)
+      if (s.name == name) return s;
+    throw std::logic_error("no section " + name);
+  };
+  const struct {
+    const char* name;
+    const char* expected;
+    std::function<void(Bytes&)> mutate;
+  } cases[] = {
+      {"atlas index out of range", "atlas index is out of range",
+       [&](Bytes& b) {
+         const auto s = section("mesh 0 brick indirection");
+         for (uint64_t i = 0; i < s.count; ++i)
+           if (peek<uint32_t>(b, s.offset + 4 * i) != sdf::kEmptyBrick) return poke<uint32_t>(b, s.offset + 4 * i, 0x7fffffffu);
+       }},
+      {"a value beyond the band", "beyond the band",
+       [&](Bytes& b) { poke<uint16_t>(b, section("mesh 0 brick atlas").offset, 0x7c00u); }},  // +inf in f16
+      {"non-finite coarse value", "coarse", [&](Bytes& b) { poke<float>(b, section("mesh 0 brick coarse level").offset, NAN); }},
+      {"more stored bricks than bricks", "stored bricks",
+       [&](Bytes& b) { poke<uint32_t>(b, section("mesh 0 brick header").offset + 28, 0xffffffffu); }},
+      {"bad brick parameters", "brick field parameters", [&](Bytes& b) { poke<uint32_t>(b, 44, 2u); }},
+  };
+  for (const auto& k : cases) {
+    SCOPED_TRACE(k.name);
+    Bytes hostile = valid;
+    k.mutate(hostile);
+    sdf::reseal_sdf_cache(hostile);
+    try {
+      sdf::decode_sdf_cache(hostile, "hostile");
+      ADD_FAILURE() << "decode accepted it";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(k.expected), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST_F(SdfCacheTest, ObtainLoadsBuildsOrRebuildsAsAsked) {
   const fs::path path = dir_.path() / "obtained.sdfcache";
   std::ostringstream log;

@@ -16,19 +16,6 @@
 namespace sdfbench::sdf {
 namespace {
 
-// Float rounding of the kernels' trilinear arithmetic on values up to the band, far above a few
-// ulps; counted into `quantization` for every format.
-constexpr float kArithmeticSlack = 4e-6f;
-
-float quantization_of(SdfFormat format, float band) {
-  switch (format) {
-    case SdfFormat::f32: return band * kArithmeticSlack;
-    case SdfFormat::f16: return band * (1.0f / 2048.0f + kArithmeticSlack);  // half: 11-bit significand
-    case SdfFormat::u8: return band * (1.0f / 255.0f + kArithmeticSlack);    // half of a 2 band / 255 step
-  }
-  return band;
-}
-
 void store(SdfFormat format, float band, float value, uint8_t* out) {
   const float v = std::clamp(value, -band, band);
   switch (format) {
@@ -55,7 +42,10 @@ std::string to_string(SdfFormat format) {
   return "?";
 }
 
-size_t bytes_per_sample(SdfFormat format) { return format == SdfFormat::f32 ? 4 : format == SdfFormat::f16 ? 2 : 1; }
+std::string describe(const BrickFieldParams& params) {
+  return "--voxels " + std::to_string(params.voxels) + " --brick-band " + std::to_string(params.band) + " --sdf-format " +
+         to_string(params.format);
+}
 
 size_t BrickField::bytes() const {
   return indirection.size() * sizeof(uint32_t) + atlas.size() + coarse.size() * sizeof(float);
@@ -68,22 +58,6 @@ void validate(const BrickFieldParams& params) {
     throw Error("--brick-band " + std::to_string(params.band) + ": must be between 1 and 16 voxels");
 }
 
-float atlas_value(const BrickField& field, size_t index) {
-  switch (field.format) {
-    case SdfFormat::f32: {
-      float v;
-      std::memcpy(&v, &field.atlas[4 * index], 4);
-      return v;
-    }
-    case SdfFormat::f16: {
-      uint16_t h;
-      std::memcpy(&h, &field.atlas[2 * index], 2);
-      return glm::unpackHalf1x16(h);
-    }
-    case SdfFormat::u8: return (float(field.atlas[index]) / 255.0f * 2.0f - 1.0f) * field.band;
-  }
-  return 0.0f;
-}
 
 BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_grid, const MeshGridParams& grid_params,
                              const BrickFieldParams& params) {
@@ -98,7 +72,7 @@ BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_gri
   field.voxel = std::max(largest, 1e-5f * scale + 1e-30f) / static_cast<float>(params.voxels);
   field.format = params.format;
   field.band = static_cast<float>(params.band) * field.voxel;
-  field.quantization = quantization_of(params.format, field.band);
+  field.quantization = brick_quantization(params.format, field.band);
   // The lattice covers the mesh and one voxel beyond the band on every side.
   const float margin = static_cast<float>(params.band + 1) * field.voxel;
   field.origin = mesh.bounds.min - margin;

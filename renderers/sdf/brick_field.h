@@ -15,10 +15,12 @@
 // u >= band everywhere. The tracers step by that bound and find hits exactly (exact_hit.h), or,
 // with --hit field, take the field's own zero crossing.
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/packing.hpp>
 
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "scenes/mesh.h"
@@ -27,7 +29,19 @@ namespace sdfbench::sdf {
 
 enum class SdfFormat { f32, f16, u8 };
 std::string to_string(SdfFormat format);
-size_t bytes_per_sample(SdfFormat format);
+inline size_t bytes_per_sample(SdfFormat format) { return format == SdfFormat::f32 ? 4 : format == SdfFormat::f16 ? 2 : 1; }
+// The most a stored value differs from the clamped exact one, with the kernels' arithmetic
+// rounding on values up to the band (a few ulps) counted in: f16 has an 11-bit significand, u8
+// steps of 2 band / 255.
+inline float brick_quantization(SdfFormat format, float band) {
+  constexpr float kArithmeticSlack = 4e-6f;
+  switch (format) {
+    case SdfFormat::f32: return band * kArithmeticSlack;
+    case SdfFormat::f16: return band * (1.0f / 2048.0f + kArithmeticSlack);
+    case SdfFormat::u8: return band * (1.0f / 255.0f + kArithmeticSlack);
+  }
+  return band;
+}
 
 struct BrickFieldParams {
   uint32_t voxels = 128;  // --voxels: lattice cells along the mesh's largest extent
@@ -37,6 +51,11 @@ struct BrickFieldParams {
   // parameter of the result.
   uint64_t max_bytes = kDefaultMaxStructureBytes;
 };
+// Whether two fields are built alike (max_bytes decides only whether a build is allowed).
+inline bool same(const BrickFieldParams& a, const BrickFieldParams& b) {
+  return a.voxels == b.voxels && a.band == b.band && a.format == b.format;
+}
+std::string describe(const BrickFieldParams& params);  // "--voxels 128 --brick-band 4 --sdf-format f32"
 
 inline constexpr uint32_t kBrickCells = 7;    // unique cells per brick and axis
 inline constexpr uint32_t kBrickSide = 8;     // samples per brick and axis (the border shared)
@@ -73,7 +92,23 @@ BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& grid, con
                              const BrickFieldParams& params);
 
 // The stored sample `index` of the atlas, decoded as the kernels' texel fetch decodes it
-// (f16 -> float exactly, u8 as UNORM q / 255 mapped to [-band, band]).
-float atlas_value(const BrickField& field, size_t index);
+// (f16 -> float exactly, u8 as UNORM q / 255 mapped to [-band, band]). Header-only: the cache
+// decoder (and its fuzz target) checks values with it.
+inline float atlas_value(const BrickField& field, size_t index) {
+  switch (field.format) {
+    case SdfFormat::f32: {
+      float v;
+      std::memcpy(&v, &field.atlas[4 * index], 4);
+      return v;
+    }
+    case SdfFormat::f16: {
+      uint16_t h;
+      std::memcpy(&h, &field.atlas[2 * index], 2);
+      return glm::unpackHalf1x16(h);
+    }
+    case SdfFormat::u8: return (float(field.atlas[index]) / 255.0f * 2.0f - 1.0f) * field.band;
+  }
+  return 0.0f;
+}
 
 }  // namespace sdfbench::sdf

@@ -323,22 +323,34 @@ SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGri
 double build_ms(const SceneSdf& sdf) {
   double ms = sdf.hash.build_ms;
   for (const MeshDistanceGrid& g : sdf.mesh_grids) ms += g.build_ms;
+  for (const BrickField& f : sdf.brick_fields) ms += f.build_ms;
   return ms;
 }
 
 size_t bytes(const SceneSdf& sdf) {
   size_t total = sdf.hash.bytes();
   for (const MeshDistanceGrid& g : sdf.mesh_grids) total += g.bytes();
+  for (const BrickField& f : sdf.brick_fields) total += f.bytes();
   return total;
 }
 
-SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params) {
+SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
+                         const BrickFieldParams* bricks) {
   scene_hash_dims(scene, hash_params);  // an impossible hash is refused before the mesh grids are built
+  if (bricks) validate(*bricks);
   SceneSdf sdf;
   for (const Mesh& mesh : scene.meshes) sdf.mesh_grids.push_back(build_mesh_distance_grid(mesh, mesh_params));
   sdf.hash = build_scene_hash(scene, sdf.mesh_grids, hash_params);
   for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
+  if (bricks) add_brick_fields(sdf, scene, mesh_params, *bricks);
   return sdf;
+}
+
+void add_brick_fields(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const BrickFieldParams& bricks) {
+  sdf.brick_fields.clear();
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    sdf.brick_fields.push_back(build_brick_field(scene.meshes[m], sdf.mesh_grids[m], mesh_params, bricks));
+  sdf.brick_params = bricks;
 }
 
 float instance_distance(const SceneSdf& sdf, const Scene& scene, uint32_t i, const glm::vec3& p, uint32_t* triangle) {

@@ -3,10 +3,12 @@
 // whose cells hold octrees (a flat node array, thesis Algorithm 4.1 / Table 5.1) whose leaves
 // list the instances that can be closest to a point inside them.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "renderers/sdf/brick_field.h"
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "scenes/scene.h"
 
@@ -52,14 +54,17 @@ struct SceneHash {
   size_t bytes() const;
 };
 
-// One scene's SDF: a distance grid per mesh (shared by its instances) and the scene hash.
+// One scene's SDF: a distance grid per mesh (shared by its instances) and the scene hash; for
+// sdf-bricks also a sampled brick field per mesh (brick_field.h).
 struct SceneSdf {
   std::vector<MeshDistanceGrid> mesh_grids;
   SceneHash hash;
   std::vector<glm::mat4> world_to_object;  // per instance (build_scene_sdf fills it): queries reuse it
+  std::optional<BrickFieldParams> brick_params;  // set with brick_fields
+  std::vector<BrickField> brick_fields;          // per mesh, or none
 };
 
-// Build time and payload bytes of all of a scene's structures (mesh grids + hash).
+// Build time and payload bytes of all of a scene's structures (mesh grids + hash + brick fields).
 double build_ms(const SceneSdf& sdf);
 size_t bytes(const SceneSdf& sdf);
 
@@ -70,7 +75,11 @@ glm::uvec3 scene_hash_dims(const Scene& scene, const SceneHashParams& params);
 // Throws Error when the scene hash, or its octrees as they grow, would pass the limits above
 // (naming the flags to change); long builds print progress on stderr (util/progress.h).
 SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGrid>& grids, const SceneHashParams& params);
-SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params);
+// `bricks` (sdf-bricks, else null): also a brick field per mesh.
+SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
+                         const BrickFieldParams* bricks = nullptr);
+// Adds (replaces) the brick fields of `sdf`'s meshes, sampled from its mesh grids.
+void add_brick_fields(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const BrickFieldParams& bricks);
 
 // Distance from world point p to one instance's surface: the mesh grid distance taken in the
 // instance's frame and scaled back (exact inside the mesh grid box, a lower bound outside).

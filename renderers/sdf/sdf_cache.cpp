@@ -101,6 +101,8 @@ void write_sdf_cache(const fs::path& path, const Scene& scene, const SceneSdf& s
     c.mesh_vertices.push_back(static_cast<uint32_t>(mesh.positions.size()));
   }
   c.hash = sdf.hash;
+  c.brick_params = sdf.brick_params;
+  c.brick_fields = sdf.brick_fields;
   const std::vector<std::byte> bytes = encode_sdf_cache(c);
   if (bytes.size() > kMaxSdfCacheBytes)  // the loader would refuse it
     throw Error("SDF cache '" + path.string() + "' would be " + describe_bytes(bytes.size()) + ", more than the limit for a cache (" +
@@ -118,7 +120,7 @@ std::vector<std::byte> read_cache(const InputFile& file, const fs::path& path) {
 
 // The cache already read (and bounded), checked completely and against this scene.
 SceneSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, const Scene& scene,
-                        const MeshGridParams& mesh_params, const SceneHashParams& hash_params) {
+                        const MeshGridParams& mesh_params, const SceneHashParams& hash_params, const BrickFieldParams* bricks) {
   check_cacheable(path, scene, mesh_params);
   SdfCacheContents c = decode_sdf_cache(bytes, path.string());
   const std::string stale = "SDF cache '" + path.string() + "' is stale: ";
@@ -133,9 +135,14 @@ SceneSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, 
   for (size_t m = 0; counts_match && m < scene.meshes.size(); ++m)
     counts_match = c.mesh_triangles[m] == scene.meshes[m].triangles.size() && c.mesh_vertices[m] == scene.meshes[m].positions.size();
   if (!counts_match) throw Error(stale + "its mesh or instance counts differ from the scene's");
+  if (bricks && !c.brick_params) throw Error(stale + "it holds no brick fields (requested " + describe(*bricks) + ")");
+  if (bricks && !same(*c.brick_params, *bricks))
+    throw Error(stale + "built with brick fields " + describe(*c.brick_params) + ", requested " + describe(*bricks));
   SceneSdf sdf;
   sdf.mesh_grids = std::move(c.mesh_grids);
   sdf.hash = std::move(c.hash);
+  sdf.brick_params = c.brick_params;
+  sdf.brick_fields = std::move(c.brick_fields);
   for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
   return sdf;
 }
@@ -143,13 +150,14 @@ SceneSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, 
 }  // namespace
 
 SceneSdf load_sdf_cache(const fs::path& path, const Scene& scene, const MeshGridParams& mesh_params,
-                        const SceneHashParams& hash_params) {
-  return sdf_from_cache(read_cache(InputFile(path, "SDF cache", kMaxSdfCacheBytes), path), path, scene, mesh_params, hash_params);
+                        const SceneHashParams& hash_params, const BrickFieldParams* bricks) {
+  return sdf_from_cache(read_cache(InputFile(path, "SDF cache", kMaxSdfCacheBytes), path), path, scene, mesh_params, hash_params,
+                        bricks);
 }
 
 SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
-                          const CacheOptions& cache, std::ostream& log) {
-  if (cache.path.empty()) return build_scene_sdf(scene, mesh_params, hash_params);
+                          const CacheOptions& cache, std::ostream& log, const BrickFieldParams* bricks) {
+  if (cache.path.empty()) return build_scene_sdf(scene, mesh_params, hash_params, bricks);
   const fs::path path = cache.path;
   std::error_code ec;
   if (fs::exists(path, ec)) {
@@ -157,7 +165,7 @@ SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params,
     // Outside the policy: a FIFO, device, directory or oversized file is no cache to replace.
     const InputFile file(path, "SDF cache", kMaxSdfCacheBytes);
     try {
-      SceneSdf sdf = sdf_from_cache(read_cache(file, path), path, scene, mesh_params, hash_params);
+      SceneSdf sdf = sdf_from_cache(read_cache(file, path), path, scene, mesh_params, hash_params, bricks);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       log << "SDF cache: loaded '" << path.string() << "' in " << static_cast<long>(ms) << " ms (build skipped)\n";
       return sdf;
@@ -167,7 +175,7 @@ SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params,
       log << "SDF cache: " << e.what() << "; rebuilding it\n";
     }
   }
-  SceneSdf sdf = build_scene_sdf(scene, mesh_params, hash_params);
+  SceneSdf sdf = build_scene_sdf(scene, mesh_params, hash_params, bricks);
   write_sdf_cache(path, scene, sdf, mesh_params);
   log << "SDF cache: built and wrote '" << path.string() << "'\n";
   return sdf;

@@ -27,8 +27,10 @@ void write_sdf_cache(const std::filesystem::path& path, const Scene& scene, cons
 // parameters. Throws Error with a clear message for a missing, special (FIFO, device,
 // directory), oversized, truncated, corrupt, hostile or stale file; never returns structures
 // that were not validated.
+// `bricks` (sdf-bricks, else null): the cache must also hold brick fields built with these
+// parameters (a cache with them serves the exact backends too).
 SceneSdf load_sdf_cache(const std::filesystem::path& path, const Scene& scene, const MeshGridParams& mesh_params,
-                        const SceneHashParams& hash_params);
+                        const SceneHashParams& hash_params, const BrickFieldParams* bricks = nullptr);
 
 enum class BadCachePolicy {
   Refuse,   // an invalid or stale cache is an error (default: never silently pay a rebuild)
@@ -45,6 +47,6 @@ struct CacheOptions {
 // something that cannot be a cache (not a regular file, or over the size limit) -> an error.
 // Says on `log` which of these happened.
 SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
-                          const CacheOptions& cache, std::ostream& log);
+                          const CacheOptions& cache, std::ostream& log, const BrickFieldParams* bricks = nullptr);
 
 }  // namespace sdfbench::sdf

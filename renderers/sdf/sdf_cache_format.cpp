@@ -25,7 +25,8 @@ struct FileHeader {
   char magic[8];
   uint32_t version, header_bytes;
   uint64_t file_bytes, scene_hash;
-  uint32_t mesh_count, instance_count, section_count, reserved;
+  uint32_t mesh_count, instance_count, section_count;
+  uint32_t bricks;  // 0: no brick fields; else voxels | band << 16 | (format + 1) << 24
   float mesh_cell_size;
   uint32_t cells_per_extent;
   float margin_cells;
@@ -53,19 +54,37 @@ struct HashHeader {
   uint32_t reserved;
   double build_ms;
 };
+struct BrickHeader {
+  glm::vec3 origin;
+  float voxel;
+  glm::uvec3 bricks;
+  uint32_t stored;
+  double build_ms;
+};
 static_assert(sizeof(FileHeader) == kSdfCacheHeaderBytes && sizeof(SectionEntry) == 32 && sizeof(GridHeader) == 48 &&
-              sizeof(HashHeader) == 40);
+              sizeof(HashHeader) == 40 && sizeof(BrickHeader) == 40);
 
 enum SectionKind : uint32_t {
   kGridHeader, kCellBegin, kCellTriangles, kFaceNormals, kEdgeNormals, kVertexNormals,  // per mesh
   kHashHeader, kCellRoot, kNodes, kInstanceLists,                                       // scene
+  kBrickHeader, kBrickSlots, kBrickAtlas, kBrickCoarse,                                 // per mesh, with brick fields
   kKindCount
 };
 constexpr uint32_t kMeshKinds = kHashHeader;
+constexpr uint32_t kSceneKinds = kBrickHeader - kHashHeader;
+constexpr uint32_t kBrickKinds = kKindCount - kBrickHeader;
 constexpr const char* kKindNames[kKindCount] = {"grid header", "cell_begin", "cell_triangles", "face normals",
                                                 "edge normals", "vertex normals", "hash header", "cell_root",
-                                                "octree nodes", "instance lists"};
-constexpr uint32_t kElementBytes[kKindCount] = {sizeof(GridHeader), 4, 4, 12, 12, 12, sizeof(HashHeader), 4, 16, 4};
+                                                "octree nodes", "instance lists", "brick header", "brick indirection",
+                                                "brick atlas", "brick coarse level"};
+constexpr uint32_t kElementBytes[kKindCount] = {sizeof(GridHeader), 4, 4, 12, 12, 12, sizeof(HashHeader), 4, 16, 4,
+                                                sizeof(BrickHeader), 4, 1, 4};
+bool per_mesh(uint32_t kind) { return kind < kMeshKinds || kind >= kBrickHeader; }
+constexpr uint64_t kMaxBricks = 1ull << 26;
+
+uint32_t brick_word(const std::optional<BrickFieldParams>& p) {
+  return p ? p->voxels | p->band << 16 | (static_cast<uint32_t>(p->format) + 1) << 24 : 0;
+}
 
 uint64_t align8(uint64_t n) { return (n + 7) & ~uint64_t{7}; }
 
@@ -147,8 +166,10 @@ class Reader {
     // No meshes or instances is a scene of implicit objects only (its hash is one empty cell).
     require(h.mesh_count <= kMaxMeshes, "mesh count " + std::to_string(h.mesh_count));
     require(h.instance_count <= kMaxInstances, "instance count " + std::to_string(h.instance_count));
-    require(h.section_count == h.mesh_count * kMeshKinds + (kKindCount - kMeshKinds),
-            "section count " + std::to_string(h.section_count) + " for " + std::to_string(h.mesh_count) + " meshes");
+    bricks_ = h.bricks != 0;
+    require(h.section_count == h.mesh_count * (kMeshKinds + (bricks_ ? kBrickKinds : 0)) + kSceneKinds,
+            "section count " + std::to_string(h.section_count) + " for " + std::to_string(h.mesh_count) + " meshes" +
+                (bricks_ ? " with brick fields" : ""));
     read_table(h);
     return h;
   }
@@ -175,7 +196,7 @@ class Reader {
     return out;
   }
   std::string name(uint32_t kind, uint32_t owner) const {
-    return kind < kMeshKinds ? "mesh " + std::to_string(owner) + " " + kKindNames[kind] : std::string(kKindNames[kind]);
+    return per_mesh(kind) ? "mesh " + std::to_string(owner) + " " + kKindNames[kind] : std::string(kKindNames[kind]);
   }
 
  private:
@@ -185,19 +206,18 @@ class Reader {
     require(table_end <= payload_end, "section table runs past the end of the file");
     table_.resize(h.section_count);
     std::memcpy(table_.data(), bytes_.data() + sizeof(FileHeader), table_.size() * sizeof(SectionEntry));
-    index_.assign(static_cast<size_t>(h.mesh_count) * kMeshKinds + (kKindCount - kMeshKinds), UINT32_MAX);
+    index_.assign(h.section_count, UINT32_MAX);
     for (uint32_t i = 0; i < table_.size(); ++i) {
       const SectionEntry& e = table_[i];
       const std::string where = "section " + std::to_string(i);
-      require(e.kind < kKindCount, where + " has unknown kind " + std::to_string(e.kind));
-      require(e.kind < kMeshKinds ? e.owner < h.mesh_count : e.owner == 0, where + " (" + kKindNames[e.kind] + ") has owner " + std::to_string(e.owner));
+      require(e.kind < (bricks_ ? kKindCount : kBrickHeader), where + " has unknown kind " + std::to_string(e.kind));
+      require(per_mesh(e.kind) ? e.owner < h.mesh_count : e.owner == 0, where + " (" + kKindNames[e.kind] + ") has owner " + std::to_string(e.owner));
       require(e.element_bytes == kElementBytes[e.kind], name(e.kind, e.owner) + ": element size " + std::to_string(e.element_bytes));
       require(e.offset % 8 == 0 && e.offset >= table_end && e.offset <= payload_end,
               name(e.kind, e.owner) + ": offset " + std::to_string(e.offset) + " outside the payload");
       require(e.count <= (payload_end - e.offset) / e.element_bytes, name(e.kind, e.owner) + ": " + std::to_string(e.count) +
                                                                           " elements run past the end of the file");
-      const size_t slot = e.kind < kMeshKinds ? static_cast<size_t>(e.owner) * kMeshKinds + e.kind
-                                              : static_cast<size_t>(h.mesh_count) * kMeshKinds + (e.kind - kMeshKinds);
+      const size_t slot = slot_of(e.kind, e.owner, h.mesh_count);
       require(index_[slot] == UINT32_MAX, name(e.kind, e.owner) + " appears twice");
       index_[slot] = i;
     }
@@ -212,17 +232,20 @@ class Reader {
     }
     mesh_count_ = h.mesh_count;
   }
-  const SectionEntry& entry(uint32_t kind, uint32_t owner) const {
-    const size_t slot = kind < kMeshKinds ? static_cast<size_t>(owner) * kMeshKinds + kind
-                                          : static_cast<size_t>(mesh_count_) * kMeshKinds + (kind - kMeshKinds);
-    return table_[index_[slot]];
+  // Mesh kinds per mesh, then the scene's, then (with brick fields) the brick kinds per mesh.
+  static size_t slot_of(uint32_t kind, uint32_t owner, uint32_t meshes) {
+    if (kind < kMeshKinds) return static_cast<size_t>(owner) * kMeshKinds + kind;
+    if (kind < kBrickHeader) return static_cast<size_t>(meshes) * kMeshKinds + (kind - kMeshKinds);
+    return static_cast<size_t>(meshes) * kMeshKinds + kSceneKinds + static_cast<size_t>(owner) * kBrickKinds + (kind - kBrickHeader);
   }
+  const SectionEntry& entry(uint32_t kind, uint32_t owner) const { return table_[index_[slot_of(kind, owner, mesh_count_)]]; }
 
   std::span<const std::byte> bytes_;
   std::string source_;
   std::vector<SectionEntry> table_;
-  std::vector<uint32_t> index_;  // slot (mesh * kinds + kind, then scene kinds) -> table entry
+  std::vector<uint32_t> index_;  // slot_of(kind, owner) -> table entry
   uint32_t mesh_count_ = 0;
+  bool bricks_ = false;
 };
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -244,6 +267,51 @@ void check_params(const Reader& r, const FileHeader& h) {
   r.require(s.octree_depth <= 16, "octree depth parameter");
   r.require(s.octree_min_objects >= 1, "octree min objects parameter");
   r.require(positive_finite(s.octree_min_size), "octree min size parameter");
+  if (h.bricks != 0) {
+    const uint32_t voxels = h.bricks & 0xffffu, band = (h.bricks >> 16) & 0xffu, format = h.bricks >> 24;
+    r.require(voxels >= 4 && voxels <= kMaxVoxels && band >= 1 && band <= 16 && format >= 1 && format <= 3,
+              "brick field parameters");
+  }
+}
+
+BrickFieldParams brick_params_of(uint32_t word) {
+  return {word & 0xffffu, (word >> 16) & 0xffu, static_cast<SdfFormat>((word >> 24) - 1)};
+}
+
+// A mesh's brick field: every index in range, every count what its header implies, values within
+// the band (a NaN would stall no march but mislead every bound); band and quantization are
+// recomputed from the parameters, never taken from the file.
+BrickField read_bricks(const Reader& r, uint32_t mesh, const BrickFieldParams& params) {
+  const std::string what = "mesh " + std::to_string(mesh) + " brick field";
+  const BrickHeader h = r.single<BrickHeader>(kBrickHeader, mesh);
+  r.require(finite(h.origin) && positive_finite(h.voxel), what + ": origin or voxel not finite");
+  r.require(h.bricks.x && h.bricks.y && h.bricks.z && cell_product(h.bricks) <= kMaxBricks, what + ": bad dimensions");
+  r.require(h.stored <= cell_product(h.bricks), what + ": more stored bricks than bricks");
+  BrickField f;
+  f.origin = h.origin;
+  f.voxel = h.voxel;
+  f.bricks = h.bricks;
+  f.format = params.format;
+  f.band = static_cast<float>(params.band) * h.voxel;
+  f.quantization = brick_quantization(params.format, f.band);
+  f.build_ms = h.build_ms;
+  r.require(positive_finite(f.band), what + ": band not finite");
+  f.indirection = r.section<uint32_t>(kBrickSlots, mesh);
+  r.require(f.indirection.size() == cell_product(h.bricks), what + ": indirection has " + std::to_string(f.indirection.size()) +
+                                                                  " entries for " + std::to_string(cell_product(h.bricks)) + " bricks");
+  r.require(std::all_of(f.indirection.begin(), f.indirection.end(), [&](uint32_t s) { return s == kEmptyBrick || s < h.stored; }),
+            what + ": a brick's atlas index is out of range");
+  f.atlas = r.section<uint8_t>(kBrickAtlas, mesh);
+  r.require(f.atlas.size() == uint64_t{h.stored} * kBrickSamples * bytes_per_sample(params.format),
+            what + ": atlas of " + std::to_string(f.atlas.size()) + " bytes for " + std::to_string(h.stored) + " bricks");
+  const size_t samples = f.atlas.size() / bytes_per_sample(params.format);
+  for (size_t i = 0; i < samples && params.format != SdfFormat::u8; ++i)
+    r.require(std::abs(atlas_value(f, i)) <= f.band * 1.0001f, what + ": an atlas value is not finite or lies beyond the band");
+  f.coarse = r.section<float>(kBrickCoarse, mesh);
+  r.require(f.coarse.size() == cell_product(h.bricks + 1u), what + ": coarse level count differs from its brick corners");
+  r.require(std::all_of(f.coarse.begin(), f.coarse.end(), [](float v) { return std::isfinite(v); }),
+            what + ": non-finite coarse value");
+  return f;
 }
 
 template <class T>
@@ -343,6 +411,7 @@ std::vector<std::byte> encode_sdf_cache(const SdfCacheContents& c) {
   h.octree_min_objects = c.hash_params.octree_min_objects;
   h.octree_min_size = c.hash_params.octree_min_size;
   h.lists = static_cast<uint32_t>(c.hash_params.lists);
+  h.bricks = brick_word(c.brick_params);
 
   std::vector<GridHeader> grid_headers;
   for (uint32_t m = 0; m < meshes; ++m) {
@@ -364,6 +433,20 @@ std::vector<std::byte> encode_sdf_cache(const SdfCacheContents& c) {
   w.add(kCellRoot, 0, c.hash.cell_root);
   w.add(kNodes, 0, c.hash.nodes);
   w.add(kInstanceLists, 0, c.hash.instance_lists);
+  std::vector<BrickHeader> brick_headers;
+  if (c.brick_params) {
+    for (uint32_t m = 0; m < meshes; ++m) {
+      const BrickField& f = c.brick_fields.at(m);
+      brick_headers.push_back({f.origin, f.voxel, f.bricks, static_cast<uint32_t>(f.stored_bricks()), f.build_ms});
+    }
+    for (uint32_t m = 0; m < meshes; ++m) {
+      const BrickField& f = c.brick_fields[m];
+      w.add_one(kBrickHeader, m, brick_headers[m]);
+      w.add(kBrickSlots, m, f.indirection);
+      w.add(kBrickAtlas, m, f.atlas);
+      w.add(kBrickCoarse, m, f.coarse);
+    }
+  }
   return w.finish(h);
 }
 
@@ -389,6 +472,10 @@ SdfCacheContents decode_sdf_cache(std::span<const std::byte> bytes, const std::s
     c.mesh_vertices.push_back(vertices);
   }
   c.hash = read_hash(r, c.hash_params, h.instance_count);
+  if (h.bricks != 0) {
+    c.brick_params = brick_params_of(h.bricks);
+    for (uint32_t m = 0; m < h.mesh_count; ++m) c.brick_fields.push_back(read_bricks(r, m, *c.brick_params));
+  }
   c.sections = r.describe();
   return c;
 }

@@ -6,8 +6,13 @@
 //   section table   per section: kind, owner mesh, element size, offset, element count
 //   sections        per mesh: grid header (origin, cell size, dims, triangle/vertex counts,
 //                   build ms), cell_begin, cell_triangles, face/edge/vertex pseudo-normals;
-//                   scene: hash header, cell_root, octree nodes, instance lists
+//                   scene: hash header, cell_root, octree nodes, instance lists;
+//                   only when the header's brick word is not 0 (sdf-bricks, issue 28), per mesh:
+//                   brick header (origin, voxel, bricks, stored count, build ms), indirection,
+//                   atlas (bytes in the word's format), coarse level
 //   checksum        FNV-1a 64 of every byte before it
+// (Caches without brick fields are the same bytes as before them; a reader from before them
+// refuses a cache with them: unknown section kinds.)
 //
 // decode_sdf_cache trusts nothing: sizes, offsets, overlaps, counts, every index and every
 // float are checked before a structure is returned, so a renderer can walk the result (and
@@ -15,10 +20,12 @@
 // alone; load_sdf_cache (sdf_cache.h) adds the checks against a scene.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "renderers/sdf/brick_field.h"
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "renderers/sdf/scene_hash.h"
 
@@ -46,6 +53,8 @@ struct SdfCacheContents {
   std::vector<MeshDistanceGrid> mesh_grids;
   std::vector<uint32_t> mesh_triangles, mesh_vertices;  // per mesh
   SceneHash hash;
+  std::optional<BrickFieldParams> brick_params;  // with a brick field per mesh, or none
+  std::vector<BrickField> brick_fields;
   std::vector<SdfCacheSection> sections;  // filled by decode (for inspect)
   uint64_t file_bytes = 0;                // filled by decode
 };

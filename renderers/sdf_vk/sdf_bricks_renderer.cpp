@@ -71,17 +71,10 @@ void SdfBricksRenderer::prepare(const Scene& scene) {
   SdfGpuArrays arrays;
   BrickGpuArrays bricks;
   {  // the CPU structures are freed once flattened
-    const sdf::SceneSdf sdf = sdf::obtain_scene_sdf(scene, options_.mesh_grid, options_.scene_hash, options_.cache, std::cerr);
-    std::vector<sdf::BrickField> fields;
-    double brick_ms = 0;
-    size_t brick_bytes = 0;
-    for (size_t m = 0; m < scene.meshes.size(); ++m) {
-      fields.push_back(sdf::build_brick_field(scene.meshes[m], sdf.mesh_grids[m], options_.mesh_grid, field_params_));
-      brick_ms += fields.back().build_ms;
-      brick_bytes += fields.back().bytes();
-    }
-    stats_ = StructureStats{sdf::build_ms(sdf) + brick_ms, sdf::bytes(sdf) + brick_bytes, {},
-                            std::string("brick_fetch=") + (sampler_ ? "sampler" : "texel")};
+    const sdf::SceneSdf sdf =
+        sdf::obtain_scene_sdf(scene, options_.mesh_grid, options_.scene_hash, options_.cache, std::cerr, &field_params_);
+    const std::vector<sdf::BrickField>& fields = sdf.brick_fields;
+    stats_ = StructureStats{sdf::build_ms(sdf), sdf::bytes(sdf), {}, std::string("brick_fetch=") + (sampler_ ? "sampler" : "texel")};
     arrays = flatten_for_gpu(scene, sdf, options_.tracing, LeafLists::overlapping_first);
     for (const Instance& instance : scene.instances)
       stats_->instance_voxels.push_back(fields[instance.mesh].voxel * instance.transform.scale);

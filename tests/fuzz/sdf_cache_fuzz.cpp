@@ -45,7 +45,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 namespace {
 
 // A small valid cache built by hand: one mesh (2 triangles, 4 vertices, 2x2x2 cells) and a
-// 2x1x1 hash whose first cell holds an octree of depth 1.
+// 2x1x1 hash whose first cell holds an octree of depth 1, and a brick field of 2x1x1 bricks
+// (one stored, f16) so that the brick sections are fuzzed too.
 std::vector<std::byte> seed_cache() {
   sdf::SdfCacheContents c;
   c.scene_hash = 0x1234;
@@ -72,6 +73,16 @@ std::vector<std::byte> seed_cache() {
   for (uint32_t k = 0; k < 8; ++k) c.hash.nodes.push_back({-1, k % 3, 1, 1});
   c.hash.nodes.push_back({-1, 0, 3, 0});
   c.hash.instance_lists = {0, 1, 2};
+  c.brick_params = sdf::BrickFieldParams{8, 2, sdf::SdfFormat::f16};
+  sdf::BrickField f;
+  f.origin = glm::vec3(-1.5f);
+  f.voxel = 0.25f;
+  f.bricks = glm::uvec3(2, 1, 1);
+  f.format = sdf::SdfFormat::f16;
+  f.indirection = {0, sdf::kEmptyBrick};
+  f.atlas.assign(sdf::kBrickSamples * 2, 0);  // half 0.0
+  f.coarse.assign(12, 0.5f);
+  c.brick_fields = {f};
   return sdf::encode_sdf_cache(c);
 }
 
