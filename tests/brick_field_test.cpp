@@ -113,6 +113,37 @@ INSTANTIATE_TEST_SUITE_P(Meshes, BrickFieldVsBruteForce,
                                          FieldCase{"teapot", 48, sdf::SdfFormat::u8}, FieldCase{"monkey", 40, sdf::SdfFormat::f32}),
                          case_name);
 
+// An open, flat mesh (a panel of 4x4 quads, no thickness): the bound holds there too, above,
+// below, beside and far from it.
+TEST(BrickField, OpenFlatPanelBoundNeverExceedsTheDistance) {
+  Mesh panel;
+  panel.name = "panel";
+  for (uint32_t j = 0; j <= 4; ++j)
+    for (uint32_t i = 0; i <= 4; ++i) panel.positions.emplace_back(i / 4.0f - 0.5f, 0.0f, j / 4.0f - 0.5f);
+  for (uint32_t j = 0; j < 4; ++j)
+    for (uint32_t i = 0; i < 4; ++i) {
+      const uint32_t a = j * 5 + i, b = a + 1, c = a + 5, d = c + 1;
+      panel.triangles.emplace_back(a, c, b);
+      panel.triangles.emplace_back(b, c, d);
+    }
+  finish_mesh(panel);
+  const sdf::MeshDistanceGrid grid = sdf::build_mesh_distance_grid(panel, sdf::MeshGridParams{});
+  for (uint32_t voxels : {32u, 128u}) {
+    const std::vector<sdf::BrickField> fields = {sdf::build_brick_field(panel, grid, sdf::MeshGridParams{}, {voxels, 4})};
+    const BrickGpuArrays arrays = flatten_brick_fields(fields);
+    shading::BrickCpuSampler sampler(arrays);
+    const auto info = sampler.brick_field_info(0);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-0.8f, 0.8f), h(-0.02f, 0.3f);
+    for (int i = 0; i < 4000; ++i) {
+      const glm::vec3 p(u(rng), i % 2 ? h(rng) : h(rng) * 0.1f, u(rng));
+      const float exact = sdf::brute_force_distance(panel, p);
+      ASSERT_LE(sampler.sample_field(info, p).bound, exact * (1.0f + 1e-5f) + 1e-6f)
+          << voxels << " voxels, at (" << p.x << ", " << p.y << ", " << p.z << "), exact " << exact;
+    }
+  }
+}
+
 TEST(BrickField, FormatsStoreTheSameBricksInFewerBytes) {
   const Mesh mesh = load_obj(builtin_mesh_path("bunny"), "bunny");
   const sdf::MeshDistanceGrid grid = sdf::build_mesh_distance_grid(mesh, sdf::MeshGridParams{});

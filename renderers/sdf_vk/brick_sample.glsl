@@ -71,7 +71,8 @@ SHARED_FN float trilinear(float c000, float c100, float c010, float c110, float 
 }
 
 // The field at p (mesh space). Outside the lattice: the distance to the lattice box plus the
-// margin (the mesh lies inside its bounds). In an empty brick: the band (no point of the brick
+// margin less a voxel (the mesh lies inside its bounds, `margin` inside the box; a voxel less, so
+// that a step from outside never lands exactly on a surface lying on the bounds). In an empty brick: the band (no point of the brick
 // comes nearer), or the coarse level's bound where that is larger.
 SHARED_FN FieldSample sample_field(BrickFieldInfo f, vec3 p) {
   FieldSample s;
@@ -79,7 +80,7 @@ SHARED_FN FieldSample sample_field(BrickFieldInfo f, vec3 p) {
   vec3 hi = brick_lattice_max(f);
   vec3 gap = max(max(f.origin - p, p - hi), vec3(0.0f));
   if (gap.x > 0.0f || gap.y > 0.0f || gap.z > 0.0f) {
-    s.bound = length(gap) + f.margin;
+    s.bound = length(gap) + f.margin - f.voxel;
     s.value = s.bound;
     return s;
   }

@@ -55,6 +55,10 @@ float brick_decode(float raw, float band) {
 
 #define BRICK_NEAR_VOXELS 1.0f
 #define BRICK_WINDOW_VOXELS 2.0f
+// A window's exact test starts this far behind its point (never before the ray's start): a step
+// by a bound that is the exact distance (a flat mesh seen straight on) lands on the surface, and
+// rounding may put it a hair beyond.
+#define BRICK_BEHIND_VOXELS 0.05f
 #define BRICK_FIELD_HIT_VOXELS 0.25f
 // The most leaves one ray walks (a bound on the loop; a pixel past it is reported cut short).
 #define BRICK_MAX_LEAVES 65536u
@@ -185,7 +189,7 @@ bool trace_instance(Ray ray, uint instance, float t_lo, float t_hi, inout BrickH
     float th;
     uint triangle;
     vec2 uv;
-    if (exact_crossing_in_mesh(r.o, r.d, r.mesh, t, t_window, th, triangle, uv)) {
+    if (exact_crossing_in_mesh(r.o, r.d, r.mesh, max(t - BRICK_BEHIND_VOXELS * voxel, t_lo), t_window, th, triangle, uv)) {
       if (th >= best.t) return false;
       best = BrickHit(th, instance, triangle, uv);
       return true;
@@ -308,7 +312,7 @@ bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
   best = BrickHit(tmax, SDF_NONE, SDF_NONE, vec2(0.0f));
   float t, t1;
   if (!clip_to_hash_box(ray, tmax, t, t1)) return false;
-  float t_previous = t, v_previous = SDF_FAR;
+  float t_previous = t, v_previous = SDF_FAR, t_start = t;
   uint previous_instance = SDF_NONE;
   for (uint steps = 0u; t <= t1; ++steps) {
     if (steps >= sdf.hash_dims.w) {
@@ -359,7 +363,7 @@ bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
     for (uint k = 0u; k < count; ++k) {
       uint i = SDF_FETCH(instance_lists, list + 2 + int(k)).x;
       int record = int(i) * SDF_INSTANCE_TEXELS;
-      float s0 = t, s1 = min(t_test, best.t);
+      float s0 = max(t - BRICK_BEHIND_VOXELS * s.voxel, t_start), s1 = min(t_test, best.t);
       clip_to_box(ray.origin, ray.dir, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
                   uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz), s0, s1);
       if (s0 > s1) continue;
