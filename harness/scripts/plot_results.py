@@ -7,7 +7,9 @@ Writes, for whatever the CSVs contain:
   fps_vs_objects_<mode>.png   FPS vs object count (log-log), one panel per mesh, one line per backend
   thesis_vs_measured.png      each thesis table: our FPS and the thesis' FPS vs object count, per mesh
   sweep_<metric>.png          sweep heat maps: hash cell x octree depth -> FPS, steps/ray and
-                              instance evaluations/ray
+                              instance evaluations/ray (sweeps of the hash and octree)
+  brick_sweep.png             sdf-bricks sweeps over --voxels: Mrays/s and the depth error in voxels
+                              vs voxels, one line per format, trace mode and hit mode
   cost_vs_triangles_<mode>_<n>objects.png
                               the mesh-size axis (meshes "<mesh>@<triangles>", table --triangles):
                               ms per frame, build ms, structure bytes and triangle work per ray vs
@@ -166,8 +168,45 @@ def cost_vs_triangles(rows, out_dir):
             save(fig, os.path.join(out_dir, f"cost_vs_triangles_{mode}_{objects}objects.png"))
 
 
+def is_brick_sweep(row):
+    return row["table"] == "sweep" and row.get("voxels", "") != ""
+
+
+def brick_sweep(rows, out_dir):
+    sweep = [r for r in rows if is_brick_sweep(r) and usable(r)]
+    if not sweep:
+        return
+    lines = defaultdict(list)
+    for r in sweep:
+        lines[(r["sdf_format"], r["brick_trace"], r["hit"])].append(r)
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for (fmt, trace, hit), group in sorted(lines.items()):
+        label = f"{fmt}, {trace}, {hit} hits"
+        style = "-" if hit == "exact" else "--"
+        for ax, metric in zip(axes, ("mrays_per_s", "depth_p99_voxels")):
+            points = sorted((number(r["voxels"]), number(r[metric]), r) for r in group if number(r[metric]) is not None)
+            if not points:
+                continue
+            line, = ax.plot([p[0] for p in points], [p[1] for p in points], style, marker="o", label=label)
+            for x, y, r in points:  # disagreeing rows hollow, as elsewhere
+                if not r["agreement"].startswith(("ok", "reference")):
+                    ax.plot([x], [y], "o", mfc="white", mec=line.get_color())
+    voxels = sorted({number(r["voxels"]) for r in sweep})
+    for ax, title in zip(axes, ("Mrays/s", "depth error p99 (voxels)")):
+        ax.set_xscale("log", base=2)
+        ax.set_xticks(voxels, [f"{v:g}" for v in voxels])
+        ax.set_xlabel("voxels per mesh extent")
+        ax.set_title(title)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[1].set_yscale("log")
+    axes[0].legend(fontsize=6)
+    fig.suptitle(f"{sweep[0]['scene']}, {sweep[0]['backend']} {sweep[0]['mode']} ({sweep[0]['width']}x{sweep[0]['height']}; "
+                 "hollow: disagrees with Embree)", fontsize=10)
+    save(fig, os.path.join(out_dir, "brick_sweep.png"))
+
+
 def sweep_heatmaps(rows, out_dir):
-    sweep = [r for r in rows if r["table"] == "sweep" and usable(r)]
+    sweep = [r for r in rows if r["table"] == "sweep" and usable(r) and not is_brick_sweep(r)]
     if not sweep:
         return
     cells = sorted({float(r["hash_cell"]) for r in sweep})
@@ -212,6 +251,7 @@ def main():
     fps_vs_objects(rows, args.out_dir)
     thesis_vs_measured(rows, args.out_dir)
     sweep_heatmaps(rows, args.out_dir)
+    brick_sweep(rows, args.out_dir)
     cost_vs_triangles(rows, args.out_dir)
 
 
