@@ -180,14 +180,15 @@ def brick_sweep(rows, out_dir):
     for r in sweep:
         lines[(r["sdf_format"], r["brick_trace"], r["hit"])].append(r)
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for (fmt, trace, hit), group in sorted(lines.items()):
+    for k, ((fmt, trace, hit), group) in enumerate(sorted(lines.items())):
         label = f"{fmt}, {trace}, {hit} hits"
         style = "-" if hit == "exact" else "--"
+        color = plt.cm.tab20(k % 20)
         for ax, metric in zip(axes, ("mrays_per_s", "depth_p99_voxels")):
             points = sorted((number(r["voxels"]), number(r[metric]), r) for r in group if number(r[metric]) is not None)
             if not points:
                 continue
-            line, = ax.plot([p[0] for p in points], [p[1] for p in points], style, marker="o", label=label)
+            line, = ax.plot([p[0] for p in points], [p[1] for p in points], style, marker="o", color=color, label=label)
             for x, y, r in points:  # disagreeing rows hollow, as elsewhere
                 if not r["agreement"].startswith(("ok", "reference")):
                     ax.plot([x], [y], "o", mfc="white", mec=line.get_color())
