@@ -256,6 +256,18 @@ TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("holds no brick fields"), std::string::npos) << e.what();
   }
+  // obtain_scene_sdf completes such a cache (exact structures loaded, brick fields added and
+  // written back), and refuses one with other brick parameters under the default policy.
+  std::ostringstream log;
+  const fs::path plain = write_valid();
+  const sdf::SceneSdf completed =
+      sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, &bricks);
+  EXPECT_EQ(completed.brick_fields.size(), 1u);
+  EXPECT_NE(log.str().find("added brick fields"), std::string::npos) << log.str();
+  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), &bricks));
+  EXPECT_THROW(
+      sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, &other),
+      Error);
   const Bytes valid = read_all(path);
   const sdf::SdfCacheContents c = sdf::decode_sdf_cache(valid, "valid");
   auto section = [&](const std::string& name) {

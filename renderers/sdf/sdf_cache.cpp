@@ -165,9 +165,19 @@ SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params,
     // Outside the policy: a FIFO, device, directory or oversized file is no cache to replace.
     const InputFile file(path, "SDF cache", kMaxSdfCacheBytes);
     try {
-      SceneSdf sdf = sdf_from_cache(read_cache(file, path), path, scene, mesh_params, hash_params, bricks);
+      // A valid cache without brick fields is completed, not stale: its exact structures are
+      // what the brick fields are sampled from.
+      SceneSdf sdf = sdf_from_cache(read_cache(file, path), path, scene, mesh_params, hash_params, nullptr);
+      if (bricks && sdf.brick_params && !same(*sdf.brick_params, *bricks))
+        throw Error("SDF cache '" + path.string() + "' is stale: built with brick fields " + describe(*sdf.brick_params) +
+                    ", requested " + describe(*bricks));
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       log << "SDF cache: loaded '" << path.string() << "' in " << static_cast<long>(ms) << " ms (build skipped)\n";
+      if (bricks && !sdf.brick_params) {
+        add_brick_fields(sdf, scene, mesh_params, *bricks);
+        write_sdf_cache(path, scene, sdf, mesh_params);
+        log << "SDF cache: added brick fields (" << describe(*bricks) << ") to '" << path.string() << "'\n";
+      }
       return sdf;
     } catch (const Error& e) {
       if (cache.on_bad == BadCachePolicy::Refuse)

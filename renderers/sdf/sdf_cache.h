@@ -45,7 +45,8 @@ struct CacheOptions {
 // The one entry point for backends: no path -> build; a missing file -> build and write it; a
 // valid matching file -> load it (skipping the build); an invalid or stale file -> the policy;
 // something that cannot be a cache (not a regular file, or over the size limit) -> an error.
-// Says on `log` which of these happened.
+// With `bricks`, a valid cache without brick fields gets them added (and is written back); one
+// with other brick parameters is stale. Says on `log` which of these happened.
 SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
                           const CacheOptions& cache, std::ostream& log, const BrickFieldParams* bricks = nullptr);
 
