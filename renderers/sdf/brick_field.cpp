@@ -30,6 +30,9 @@ void store(SdfFormat format, float band, float value, uint8_t* out) {
 }
 
 size_t index_of(const glm::uvec3& c, const glm::uvec3& dims) { return c.x + size_t(dims.x) * (c.y + size_t(dims.y) * c.z); }
+glm::uvec3 coords_of(size_t i, const glm::uvec3& dims) {
+  return glm::uvec3(i % dims.x, (i / dims.x) % dims.y, i / (size_t(dims.x) * dims.y));
+}
 
 }  // namespace
 
@@ -110,7 +113,7 @@ BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_gri
   std::vector<uint8_t> stored(brick_count, 0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, brick_count), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t b = r.begin(); b != r.end(); ++b) {
-      const glm::uvec3 c(b % field.bricks.x, (b / field.bricks.x) % field.bricks.y, b / (size_t(field.bricks.x) * field.bricks.y));
+      const glm::uvec3 c = coords_of(b, field.bricks);
       const glm::vec3 centre = field.origin + brick_size * (glm::vec3(c) + 0.5f);
       stored[b] = grid_distance(grid, mesh, centre) - reach < field.band;
     }
@@ -131,7 +134,7 @@ BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_gri
   tbb::parallel_for(tbb::blocked_range<size_t>(0, brick_count), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t b = r.begin(); b != r.end(); ++b) {
       if (field.indirection[b] == kEmptyBrick) continue;
-      const glm::uvec3 c(b % field.bricks.x, (b / field.bricks.x) % field.bricks.y, b / (size_t(field.bricks.x) * field.bricks.y));
+      const glm::uvec3 c = coords_of(b, field.bricks);
       uint8_t* out = &field.atlas[size_t(field.indirection[b]) * kBrickSamples * sample_bytes];
       for (uint32_t z = 0; z < kBrickSide; ++z)
         for (uint32_t y = 0; y < kBrickSide; ++y)

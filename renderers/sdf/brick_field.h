@@ -91,24 +91,30 @@ void validate(const BrickFieldParams& params);
 BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& grid, const MeshGridParams& grid_params,
                              const BrickFieldParams& params);
 
-// The stored sample `index` of the atlas, decoded as the kernels' texel fetch decodes it
-// (f16 -> float exactly, u8 as UNORM q / 255 mapped to [-band, band]). Header-only: the cache
-// decoder (and its fuzz target) checks values with it.
-inline float atlas_value(const BrickField& field, size_t index) {
-  switch (field.format) {
+// Sample `index` of an atlas in `format` as the kernels' texel fetch returns it: f32, f16 ->
+// float exactly, u8 as UNORM q / 255. Header-only, like atlas_value: the cache decoder (and its
+// fuzz target) checks values with it.
+inline float atlas_texel(const std::vector<uint8_t>& atlas, SdfFormat format, size_t index) {
+  switch (format) {
     case SdfFormat::f32: {
       float v;
-      std::memcpy(&v, &field.atlas[4 * index], 4);
+      std::memcpy(&v, &atlas[4 * index], 4);
       return v;
     }
     case SdfFormat::f16: {
       uint16_t h;
-      std::memcpy(&h, &field.atlas[2 * index], 2);
+      std::memcpy(&h, &atlas[2 * index], 2);
       return glm::unpackHalf1x16(h);
     }
-    case SdfFormat::u8: return (float(field.atlas[index]) / 255.0f * 2.0f - 1.0f) * field.band;
+    case SdfFormat::u8: return float(atlas[index]) / 255.0f;
   }
   return 0.0f;
+}
+
+// The stored sample `index` of the atlas in mesh units (u8's UNORM mapped to [-band, band]).
+inline float atlas_value(const BrickField& field, size_t index) {
+  const float texel = atlas_texel(field.atlas, field.format, index);
+  return field.format == SdfFormat::u8 ? (texel * 2.0f - 1.0f) * field.band : texel;
 }
 
 }  // namespace sdfbench::sdf

@@ -6,8 +6,6 @@
 #include <cstring>
 #include <limits>
 
-#include <glm/gtc/packing.hpp>
-
 #include "util/error.h"
 
 namespace sdfbench {
@@ -72,25 +70,4 @@ BrickAtlasImage arrange_atlas_image(const BrickGpuArrays& arrays, uint32_t max_e
   return image;
 }
 
-namespace shading {
-
-float BrickCpuSampler::brick_value(int i) const {
-  const size_t k = size_t(i);
-  switch (arrays_.format) {
-    case sdf::SdfFormat::f32: {
-      float v;
-      std::memcpy(&v, &arrays_.atlas[4 * k], 4);
-      return v;
-    }
-    case sdf::SdfFormat::f16: {
-      uint16_t h;
-      std::memcpy(&h, &arrays_.atlas[2 * k], 2);
-      return glm::unpackHalf1x16(h);
-    }
-    case sdf::SdfFormat::u8: return float(arrays_.atlas[k]) / 255.0f;
-  }
-  return 0.0f;
-}
-
-}  // namespace shading
 }  // namespace sdfbench

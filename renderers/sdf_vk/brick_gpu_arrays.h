@@ -42,7 +42,7 @@ class BrickCpuSampler {
   const BrickGpuArrays& arrays_;
   uvec4 brick_record(int i) const { return arrays_.records[size_t(i)]; }
   uint brick_slot(int i) const { return arrays_.slots[size_t(i)]; }
-  float brick_value(int i) const;
+  float brick_value(int i) const { return sdf::atlas_texel(arrays_.atlas, arrays_.format, size_t(i)); }
   float coarse_value(int i) const { return arrays_.coarse[size_t(i)]; }
   float brick_decode(float raw, float band) const {
     return arrays_.format == sdf::SdfFormat::u8 ? (raw * 2.0f - 1.0f) * band : raw;

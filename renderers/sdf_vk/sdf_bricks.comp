@@ -284,22 +284,26 @@ ScenePoint scene_point(Ray ray, float t) {
     uint i = SDF_FETCH(instance_lists, list + 2 + int(k)).x;
     int record = int(i) * SDF_INSTANCE_TEXELS;
     COUNT(COUNTER_AABB_TESTS, 1u);
-    float box = box_distance(p, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
-                             uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz));
+    uvec4 box_min = SDF_FETCH(instance_records, record);  // w: mesh
+    uvec4 box_max = SDF_FETCH(instance_records, record + 1);  // w: scale
+    float box = box_distance(p, uintBitsToFloat(box_min.xyz), uintBitsToFloat(box_max.xyz));
     if (box >= s.value) continue;
     COUNT(COUNTER_INSTANCE_EVALS, 1u);
-    InstanceRay r = instance_ray(i, ray);
-    FieldSample f = sample_at(r, t);
+    // Only the point goes into the instance's frame (not the whole ray, as instance_ray does).
+    float scale = uintBitsToFloat(box_max.w);
+    BrickFieldInfo field = brick_field_info(box_min.w);
+    COUNT(COUNTER_FIELD_SAMPLES, 1u);
+    FieldSample f = sample_field(field, transform_point(record + 2, ray.origin + t * ray.dir));
 #ifdef BRICK_HIT_FIELD
-    float v = f.value * r.scale;
+    float v = f.value * scale;
 #else
-    float v = f.bound * r.scale;
+    float v = f.bound * scale;
 #endif
     if (v < s.value) {
       s.value = v;
-      s.bound = f.bound * r.scale;
+      s.bound = f.bound * scale;
       s.instance = i;
-      s.voxel = r.f.voxel * r.scale;
+      s.voxel = field.voxel * scale;
     }
   }
   return s;
