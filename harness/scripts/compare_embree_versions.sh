@@ -36,7 +36,7 @@ for config in "thesis:bunny:1000 primary" "thesis:bunny:1000 shadow" "thesis:bun
   for ((pair = 1; pair <= pairs; ++pair)); do
     for build in embree3 embree4; do
       ms=$(run_$build render --scene "$scene" --backend embree --mode "$mode" --size "$size" --frames "$frames" --warmup 2 |
-        grep -o 'wall median [0-9.]*' | head -1 | awk '{print $3}')
+        grep -o 'wall median [0-9.]*' | sed -n 1p | awk '{print $3}')
       echo "$scene $mode $pair $build $ms"
     done
   done

@@ -64,7 +64,7 @@ done
 # The device's name, as the renderer reports it, names the folder.
 probe=$("$binary" render --scene thesis:sphere:1 --backend sdf-hash --size 16x9 --frames 1 --warmup 0 --device "$device" 2>&1) ||
   die "no Vulkan device '$device': $(grep -m1 'error' <<<"$probe" || tail -1 <<<"$probe")"
-name=$(sed -n 's/^backend  *sdf-hash on \(.*\) \[.*$/\1/p' <<<"$probe" | head -1)
+name=$(sed -n 's/^backend  *sdf-hash on \(.*\) \[.*$/\1/p' <<<"$probe" | sed -n 1p)
 [[ -n $name ]] || die "could not read the device's name from: $(head -3 <<<"$probe")"
 slug=$(tr 'A-Z' 'a-z' <<<"$name" | sed 's/[^a-z0-9]\+/-/g; s/^-//; s/-$//')
 dir="$out/$slug"

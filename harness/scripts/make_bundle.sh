@@ -95,7 +95,7 @@ while read -r soname path; do
   if is_fallback "$soname"; then dest=$root/lib/fallback; else dest=$root/lib; fi
   cp -L "$path" "$dest/$soname"
   # (by file name: with merged /usr, dpkg may know the file under /lib, ldd under /usr/lib)
-  package=$(dpkg -S "*/$(basename "$(readlink -f "$path")")" 2>/dev/null | head -1 | cut -d: -f1) || true
+  package=$(dpkg -S "*/$(basename "$(readlink -f "$path")")" 2>/dev/null | sed -n 1p | cut -d: -f1) || true
   [[ -n $package ]] && packages+=("$package")
 done < <(ldd "$binary" | awk '$2 == "=>" {print $1, $3}')
 for package in $(printf '%s\n' "${packages[@]}" | sort -u); do

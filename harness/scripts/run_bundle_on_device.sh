@@ -23,7 +23,7 @@ while [[ $# -gt 0 ]]; do
     *) die "unknown argument '$1' (see --help)" ;;
   esac
 done
-[[ -n $bundle ]] || bundle=$(ls -t dist/sdfbench-*-linux-x86_64.tar.gz 2>/dev/null | head -1)
+[[ -n $bundle ]] || bundle=$(ls -t dist/sdfbench-*-linux-x86_64.tar.gz 2>/dev/null | sed -n 1p)
 [[ -n $bundle && -f $bundle ]] || die "no bundle (give --bundle, or make one with harness/scripts/make_bundle.sh)"
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
@@ -33,7 +33,7 @@ tar -C "$unpacked" -xzf "$bundle"
 root=$(echo "$unpacked"/sdfbench-*)
 {
   echo "# $(date -u +%Y-%m-%dT%H:%M:%SZ) $(basename "$bundle") on $(uname -n), $(uname -r)"
-  ldd --version 2>&1 | head -1
+  ldd --version 2>&1 | sed -n 1p  # sed reads it all: head would close the pipe early and, under pipefail, fail the script
   nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader 2>/dev/null || echo "(no nvidia-smi)"
   ls /usr/share/vulkan/icd.d /etc/vulkan/icd.d 2>/dev/null || echo "(no ICD folders)"
 } | tee "$out/machine.txt" >&2

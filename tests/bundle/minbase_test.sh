@@ -43,14 +43,14 @@ if [[ $(printf '%s\n' "$host_glibc" 2.36 | sort -V | tail -1) != 2.36 ]]; then
 fi
 say "making the bundle${bundle_flags[*]:+ (host glibc $host_glibc: ${bundle_flags[*]})}"
 harness/scripts/make_bundle.sh --out "$work/dist" "${bundle_flags[@]}" | tee "$work/make_bundle.log" | tail -1
-archive=$(ls -t "$work"/dist/sdfbench-*.tar.gz | head -1)
+archive=$(ls -t "$work"/dist/sdfbench-*.tar.gz | sed -n 1p)
 name=$(basename "$archive" .tar.gz)
 rm -rf "$root/opt/sdfbench" && mkdir -p "$root/opt/sdfbench"
 tar -C "$root/opt/sdfbench" -xzf "$archive"
 bundle=/opt/sdfbench/$name
 
 # 1. No Vulkan loader or driver in the root (a new root has none; a reused one is reset).
-in_root dpkg-query -W -f '${Status}' libvulkan1 2>/dev/null | grep -q '^install ok installed' &&
+in_root dpkg-query -W -f '${Status}' libvulkan1 2>/dev/null | grep '^install ok installed' >/dev/null &&
   in_root apt-get purge -y -qq libvulkan1 mesa-vulkan-drivers >/dev/null
 no_dev_packages
 [[ ! -e $root/usr/lib/x86_64-linux-gnu/libvulkan.so.1 ]] || fail "the root still has libvulkan.so.1"
@@ -85,7 +85,7 @@ in_root "$bundle/sdfbench" table --quick --meshes sphere --objects 1 --size 32x1
   --frames 1 --csv /tmp/quick.csv >"$work/table.log" 2>&1 || { tail -20 "$work/table.log"; fail "table --quick in the root"; }
 csv=$root/tmp/quick.csv
 rows=$(($(wc -l <"$csv") - 1))
-head -1 "$csv" | grep -q psnr || fail "the table's CSV has no agreement (psnr) column: $(head -1 "$csv")"
+head -1 "$csv" | grep psnr >/dev/null || fail "the table's CSV has no agreement (psnr) column: $(head -1 "$csv")"
 ((rows >= 4)) || fail "table --quick wrote $rows rows"
 say "table --quick: $rows rows in the root's CSV"
 

@@ -29,7 +29,7 @@ trap finish EXIT
 fail() { echo "slurm_test: FAIL: $*" >&2; exit 1; }
 ok() { echo "slurm_test: ok: $*"; }
 log_of() { echo "slurm-sdfbench-$1.log"; }  # $1: JOB_TASK; the script logs in the submission folder
-state_of() { scontrol -o show job "$1" 2>/dev/null | grep -o 'JobState=[A-Z_]*' | head -1 | cut -d= -f2; }
+state_of() { scontrol -o show job "$1" 2>/dev/null | grep -o 'JobState=[A-Z_]*' | sed -n 1p | cut -d= -f2; }
 submit() {  # sbatch ARGS...; prints the job id
   local id
   id=$(sbatch --parsable "$@") || fail "sbatch $*"
@@ -105,7 +105,7 @@ failing=$(SDFBENCH_VULKAN_HIDE_EXTENSIONS=VK_KHR_ray_tracing_pipeline submit --a
   --out "$work/failing" -- --table 6.3 --meshes sphere --objects 1 --backends embree,vk-rt --size 32x18 --check-size 32x18 \
   --frames 1 --warmup 0)
 [ "$(wait_done "${failing}_1")" = FAILED ] || fail "task ${failing}_1 with an ERROR row did not fail: $(tail -3 "$(log_of "${failing}_1")")"
-scontrol -o show job "${failing}_1" | grep -q "ExitCode=4:0" ||
+scontrol -o show job "${failing}_1" | grep "ExitCode=4:0" >/dev/null ||
   fail "task ${failing}_1: not sdfbench's exit status 4: $(scontrol -o show job "${failing}_1" | grep -o 'ExitCode=[^ ]*')"
 ok "a task with an ERROR row ends FAILED with exit status 4"
 
@@ -147,7 +147,7 @@ tests/slurm/same_rows.py "$work/reference.csv" "$work/timeout/table_3_of_3.csv" 
   fail "time-limited task 3's rows"
 log3=$(log_of "${limited}_3")
 grep -q "attempt 2" "$log3" || fail "task ${limited}_3 did not run again: $(cat "$log3")"
-scontrol -o show job "${limited}_3" | grep -q "Restarts=1" || fail "task ${limited}_3: $(scontrol -o show job "${limited}_3")"
+scontrol -o show job "${limited}_3" | grep "Restarts=1" >/dev/null || fail "task ${limited}_3: $(scontrol -o show job "${limited}_3")"
 ok "task at its time limit requeued itself and completed (Restarts=1, 4 rows)"
 
 # 6. Other flags (--size) into the folder of the first run: --resume refuses the task's CSV.

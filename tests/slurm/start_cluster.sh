@@ -32,7 +32,7 @@ if ! munge -n 2>/dev/null | unmunge >/dev/null 2>&1; then
   cp /run/munge/munged.pid "$dir/munged.pid"  # ours to stop (the munge user writes only in /run/munge)
 fi
 
-node_line=$(slurmd -C | head -1)  # NodeName=... CPUs=... RealMemory=...
+node_line=$(slurmd -C | sed -n 1p)  # NodeName=... CPUs=... RealMemory=...
 node=$(sed -n 's/^NodeName=\([^ ]*\).*/\1/p' <<<"$node_line")
 mkdir -p "$dir/state" "$dir/spool"
 cat >"$dir/slurm.conf" <<CONF
@@ -64,7 +64,7 @@ export SLURM_CONF="$dir/slurm.conf"
 $sudo env SLURM_CONF="$SLURM_CONF" slurmctld -c  # -c: a clean start, no state of an earlier test
 $sudo env SLURM_CONF="$SLURM_CONF" slurmd
 for _ in $(seq 120); do
-  state=$(sinfo -h -N -o %T 2>/dev/null | head -1 || true)
+  state=$(sinfo -h -N -o %T 2>/dev/null | sed -n 1p || true)
   [ "$state" = idle ] && break
   sleep 0.5
 done
