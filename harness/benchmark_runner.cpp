@@ -63,7 +63,7 @@ Measurement configuration_fields(const BenchConfig& config, size_t run_index, co
     m.storage_tables = t.storage_tables ? 1.0 : 0.0;
     m.max_structure_mb = static_cast<double>(config.options.mesh_grid.max_bytes >> 20);
     for (const ParamSpec& spec : param_specs())
-      if (spec.family == config.backend) m.backend_params[spec.name] = config.options.params.get(spec.name);
+      if (belongs_to(spec, config.backend)) m.backend_params[spec.name] = config.options.params.get(spec.name);
     m.cache = config.options.cache.path;
     if (!m.cache.empty()) m.on_bad_cache = config.options.cache.on_bad == sdf::BadCachePolicy::Rebuild ? "rebuild" : "refuse";
   }

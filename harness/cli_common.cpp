@@ -107,8 +107,8 @@ void add_backend_param_options(CLI::App& command, BackendParams& params) {
             flag_of(spec), [&params, name = spec.name](const std::string& value) { params.set(name, value); },
             spec.help + " (default " + spec.default_value + ")")
         ->check(CLI::Validator([spec](std::string& value) { return check_param_value(spec, value); },
-                               spec.choices.empty() ? "INT" : "CHOICE"))
-        ->group(spec.family);
+                               spec.positive_real ? "REAL" : spec.choices.empty() ? "INT" : "CHOICE"))
+        ->group(families_of(spec));
   }
 }
 
@@ -168,7 +168,7 @@ void add_tracing_options(CLI::App& command, sdf::SphereTraceParams& tracing, con
       ->group(group);
   command.add_option("--hit", tracing.hit,
                      "SDF hits: exact (default: the ray's crossing with the triangles listed where it converged) or "
-                     "thesis (the converged point, the closest point's normal and uv); sdf-bricks: exact or field (the sampled "
+                     "thesis (the converged point, the closest point's normal and uv); sdf-bricks and sdf-global: exact or field (the sampled "
                      "field's own crossing and gradient normal, its accuracy in the row)")
       ->transform(CLI::CheckedTransformer(std::map<std::string, sdf::HitMode>{{"exact", sdf::HitMode::exact},
                                                                              {"thesis", sdf::HitMode::thesis},

@@ -33,6 +33,22 @@ void run_inspect(const std::string& path) {
   }
   std::printf("hash         %ux%ux%u cells of %g, %zu octree nodes, built in %.0f ms\n", c.hash.dims.x, c.hash.dims.y,
               c.hash.dims.z, c.hash.cell_size, c.hash.nodes.size(), c.hash.build_ms);
+  if (c.brick_params) {
+    std::printf("brick fields %s\n", sdf::describe(*c.brick_params).c_str());
+    for (size_t i = 0; i < c.brick_fields.size(); ++i) {
+      const sdf::BrickField& f = c.brick_fields[i];
+      std::printf("bricks %-5zu %ux%ux%u bricks of voxel %g, %zu stored, built in %.0f ms\n", i, f.bricks.x, f.bricks.y, f.bricks.z,
+                  f.voxel, f.stored_bricks(), f.build_ms);
+    }
+  }
+  if (c.global_params) {
+    const sdf::GlobalField& g = c.global_field;
+    const sdf::BrickField& f = g.field;
+    std::printf("global field %s\n", sdf::describe(*c.global_params).c_str());
+    std::printf("global       %ux%ux%u bricks of voxel %g from (%g, %g, %g), %zu stored, %zu list entries, built in %.0f ms\n",
+                f.bricks.x, f.bricks.y, f.bricks.z, f.voxel, f.origin.x, f.origin.y, f.origin.z, f.stored_bricks(),
+                g.list_instances.size(), g.build_ms);
+  }
   std::printf("sections     %-28s %12s %12s %14s\n", "name", "offset", "elements", "bytes");
   for (const sdf::SdfCacheSection& s : c.sections)
     std::printf("             %-28s %12llu %12llu %14llu\n", s.name.c_str(), static_cast<unsigned long long>(s.offset),

@@ -23,7 +23,7 @@ struct SweepArgs {
 };
 
 void run_sweep(SweepArgs args) {
-  if (args.backend.rfind("sdf-", 0) != 0) throw Error("--backend '" + args.backend + "': a sweep varies SDF structures (sdf-octree, sdf-hash, sdf-bricks, sdf-cpu)");
+  if (args.backend.rfind("sdf-", 0) != 0) throw Error("--backend '" + args.backend + "': a sweep varies SDF structures (sdf-octree, sdf-hash, sdf-bricks, sdf-global, sdf-cpu)");
   check_backend_name(args.backend);
   args.run.settings.check_size = parse_size(args.run.check_size);
   args.run.plan();  // a bad --shard fails before the plan is built
@@ -62,7 +62,8 @@ void run_sweep(SweepArgs args) {
   for (const ParamSpec& spec : param_specs()) {
     const auto given = args.params.find(spec.name);
     if (given == args.params.end()) continue;
-    if (spec.family != args.backend) throw Error(flag_of(spec) + " is a parameter of " + spec.family + ", not of --backend " + args.backend);
+    if (!belongs_to(spec, args.backend))
+      throw Error(flag_of(spec) + " is a parameter of " + families_of(spec) + ", not of --backend " + args.backend);
     std::vector<std::string> values = split_list(given->second, flag_of(spec));
     BackendParams check;
     for (std::string& value : values) {
@@ -138,7 +139,7 @@ void register_sweep_command(CLI::App& app) {
     cmd->add_option_function<std::string>(
            flag_of(spec), [args, name = spec.name](const std::string& values) { args->params[name] = values; },
            spec.help + "; comma-separated values (default " + spec.default_value + ")")
-        ->group(spec.family);
+        ->group(families_of(spec));
   add_run_options(*cmd, args->run);
   cmd->add_option("--device", args->options.device, "Vulkan device: lavapipe (default), gpu, an index or a name");
   cmd->add_option("--threads", args->options.threads, "CPU threads (Embree reference, sdf-cpu)")->check(CLI::Range(1u, 1024u));

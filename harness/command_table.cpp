@@ -14,7 +14,7 @@ namespace {
 
 struct TableArgs {
   std::string tables = "all", size, meshes = "bunny,teapot,monkey,sphere", objects = "1,10,100,1000",
-              backends = "embree,tri-aabb,bvh,vk-rt,sdf-hash,sdf-octree,sdf-bricks", mode, triangles;
+              backends = "embree,tri-aabb,bvh,vk-rt,sdf-hash,sdf-octree,sdf-bricks,sdf-global", mode, triangles;
   unsigned max_depth = 4;
   bool quick = false;
   RunOptions run;

@@ -203,7 +203,7 @@ void family_sweep_table(std::ostringstream& out, const std::vector<Row>& rows, c
 void sweep_table(std::ostringstream& out, const std::vector<Row>& rows) {
   std::vector<ParamSpec> specs;
   for (const ParamSpec& spec : param_specs())
-    if (spec.family == rows.front()["backend"]) specs.push_back(spec);
+    if (belongs_to(spec, rows.front()["backend"])) specs.push_back(spec);
   if (!specs.empty()) return family_sweep_table(out, rows, specs);
   out << "### Sweep: " << rows.front()["scene"] << ", " << rows.front()["backend"] << ", " << rows.front()["mode"] << " ("
       << sizes_of(rows) << ")\n\n"
@@ -253,6 +253,8 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
     pair_table(out, mode, mode_rows, "sdf-octree", "vk-rt", "the thesis' structure against the driver's BVH");
     pair_table(out, mode, mode_rows, "sdf-bricks", "sdf-octree", "a sampled per-mesh field against the exact one");
     pair_table(out, mode, mode_rows, "sdf-bricks", "bvh", "a sampled per-mesh field against a BVH in a compute kernel");
+    pair_table(out, mode, mode_rows, "sdf-global", "sdf-octree", "one sampled scene-wide field against the thesis' structure");
+    pair_table(out, mode, mode_rows, "sdf-global", "bvh", "one sampled scene-wide field against a BVH in a compute kernel");
   }
   for (const std::vector<Row>& sweep : sweeps) sweep_table(out, sweep);
   if (rows.empty()) out << "(no measurements)\n";

@@ -12,16 +12,19 @@ namespace sdfbench {
 
 struct ParamSpec {
   std::string name;           // CSV column; the flag is --name with '-' for '_'
-  std::string family;         // the backend that reads it ("sdf-bricks")
+  std::vector<std::string> families;  // the backends that read it ("sdf-bricks", "sdf-global")
   std::string default_value;
   std::string help;
-  std::vector<std::string> choices;  // one of these; empty: an integer in [lo, hi]
-  int64_t lo = 0, hi = 0;
+  std::vector<std::string> choices;  // one of these; else (none, or also) a number:
+  int64_t lo = 0, hi = 0;            // an integer in [lo, hi], or
+  bool positive_real = false;        // a finite real number > 0
 };
 
 // Every family's parameters, in CSV column order.
 const std::vector<ParamSpec>& param_specs();
 std::string flag_of(const ParamSpec& spec);
+bool belongs_to(const ParamSpec& spec, const std::string& backend);
+std::string families_of(const ParamSpec& spec);  // "sdf-bricks, sdf-global"
 // An empty string when `value` is allowed, else why not (without the flag's name).
 std::string check_param_value(const ParamSpec& spec, const std::string& value);
 
@@ -32,6 +35,7 @@ class BackendParams {
   void set(const std::string& name, const std::string& value);
   const std::string& get(const std::string& name) const;
   int64_t integer(const std::string& name) const;
+  double real(const std::string& name) const;  // a positive_real parameter given as a number
   // Whether a parameter of a family other than `backend`'s was given (it would do nothing).
   std::string misplaced_for(const std::string& backend) const;
 

@@ -7,6 +7,7 @@
 #include "renderers/embree/embree_renderer.h"
 #include "renderers/sdf/sdf_cpu_renderer.h"
 #include "renderers/sdf_vk/sdf_bricks_renderer.h"
+#include "renderers/sdf_vk/sdf_global_renderer.h"
 #include "renderers/sdf_vk/sdf_vk_renderer.h"
 #include "renderers/tri_aabb/tri_aabb_renderer.h"
 #include "renderers/vk_rt/vk_rt_renderer.h"
@@ -32,7 +33,7 @@ std::string to_string(RenderMode mode) {
 }
 
 const std::vector<std::string>& backend_names() {
-  static const std::vector<std::string> names = {"embree", "tri-aabb", "bvh", "vk-rt", "sdf-hash", "sdf-octree", "sdf-bricks", "sdf-cpu"};
+  static const std::vector<std::string> names = {"embree", "tri-aabb", "bvh", "vk-rt", "sdf-hash", "sdf-octree", "sdf-bricks", "sdf-global", "sdf-cpu"};
   return names;
 }
 
@@ -45,6 +46,7 @@ std::unique_ptr<Renderer> create_renderer(const std::string& name, const Backend
   if (name == "bvh") return std::make_unique<BvhRenderer>(options);
   if (name == "sdf-hash" || name == "sdf-octree") return std::make_unique<SdfVkRenderer>(name, options);
   if (name == "sdf-bricks") return std::make_unique<SdfBricksRenderer>(options);
+  if (name == "sdf-global") return std::make_unique<SdfGlobalRenderer>(options);
   if (name == "sdf-cpu") return std::make_unique<SdfCpuRenderer>(options);
   check_backend_name(name);
   throw Error("internal: backend '" + name + "' has no constructor");

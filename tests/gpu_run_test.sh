@@ -24,19 +24,19 @@ grep -q "vk-rt" "$dir/agreement.txt" || fail "vk-rt (supported on lavapipe) left
 svt_rows=$(($(wc -l <"$dir/storage_vs_texel.csv") - 1))
 [[ $svt_rows -eq 8 ]] || fail "storage_vs_texel.csv has $svt_rows rows, expected 8"
 [[ $(grep -c ',ok,' "$dir/storage_vs_texel.csv") -eq 8 ]] || fail "not every storage_vs_texel row agrees"
-# sdf-bricks' fetch paths: 2 modes x texel and sampler, every row agreeing.
+# The sampled fields' fetch paths: sdf-bricks and sdf-global x 2 modes x texel and sampler, every row agreeing.
 bf_rows=$(($(wc -l <"$dir/brick_fetch.csv") - 1))
-[[ $bf_rows -eq 4 ]] || fail "brick_fetch.csv has $bf_rows rows, expected 4"
-[[ $(grep -c ',ok,' "$dir/brick_fetch.csv") -eq 4 ]] || fail "not every brick_fetch row agrees"
+[[ $bf_rows -eq 8 ]] || fail "brick_fetch.csv has $bf_rows rows, expected 8"
+[[ $(grep -c ',ok,' "$dir/brick_fetch.csv") -eq 8 ]] || fail "not every brick_fetch row agrees"
 grep -q "brick_fetch=sampler" "$dir/brick_fetch.csv" || fail "brick_fetch.csv has no sampler row"
 rows=$(($(wc -l <"$dir/tables.csv") - 1))
-[[ $rows -eq 14 ]] || fail "tables.csv has $rows rows, expected 14 (sphere x 1,10 objects x 7 backends)"
+[[ $rows -eq 16 ]] || fail "tables.csv has $rows rows, expected 16 (sphere x 1,10 objects x 8 backends)"
 grep -q -- "--device lavapipe" "$dir/tables_command.txt" || fail "tables_command.txt does not record the command"
 # Again with --tables-only: no compares, the finished tables kept as they are.
 cp "$dir/tables.csv" "$work/before.csv"
 "$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --out "$work/out" --tables-only \
   -- --table 6.3 --meshes sphere --objects 1,10 --check-size 32x18 >"$work/log2" 2>&1 || { tail -5 "$work/log2"; fail "--tables-only rerun exited non-zero"; }
-grep -q "14 configuration(s) already" "$work/log2" || fail "the rerun did not resume: $(grep -m2 resume "$work/log2")"
+grep -q "16 configuration(s) already" "$work/log2" || fail "the rerun did not resume: $(grep -m2 resume "$work/log2")"
 ! grep -q "gpu_run: compare" "$work/log2" || fail "--tables-only ran the compares"
 cmp -s "$work/before.csv" "$dir/tables.csv" || fail "the rerun changed the finished tables"
 

@@ -3,6 +3,10 @@
 // loader: decode (inspect), load_sdf_cache, obtain_scene_sdf, and the CLI.
 #include <gtest/gtest.h>
 
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <fstream>
@@ -154,7 +158,7 @@ TEST_F(SdfCacheTest, TruncatedFilesAreRefused) {
   const Bytes valid = read_all(write_valid());
   for (const size_t size : {size_t{0}, size_t{7}, size_t{60}, valid.size() / 2, valid.size() - 1})
     expect_refused_everywhere(Bytes(valid.begin(), valid.begin() + static_cast<std::ptrdiff_t>(size)),
-                              size < 96 ? "too short" : "truncated");
+                              size < 104 ? "too short" : "truncated");
 }
 
 TEST_F(SdfCacheTest, BitFlipsAreRefused) {
@@ -182,7 +186,7 @@ TEST_F(SdfCacheTest, ResealedHostileFilesAreRefused) {
       if (s.name == name) return s;
     throw std::logic_error("no section " + name);
   };
-  constexpr size_t kTable = 88;  // section table: 32-byte entries {kind, owner, element size, pad, offset, count}
+  constexpr size_t kTable = 96;  // section table: 32-byte entries {kind, owner, element size, pad, offset, count}
   struct Case {
     std::string name, expected;
     std::function<void(Bytes&)> mutate;
@@ -209,6 +213,9 @@ TEST_F(SdfCacheTest, ResealedHostileFilesAreRefused) {
        [&](Bytes& b) { poke<uint32_t>(b, section("mesh 0 cell_begin").offset + 8, 0xffffffffu); }},
       {"bad list rule", "list rule", [&](Bytes& b) { poke<uint32_t>(b, 84, 7u); }},
       {"wrong version", "format version", [&](Bytes& b) { poke<uint32_t>(b, 8, 99u); }},
+      {"a version 1 cache (before the global field)", "format version 1; this sdfbench reads version 2",
+       [&](Bytes& b) { poke<uint32_t>(b, 8, 1u); }},
+      {"a voxel request without a global field", "global field parameters", [&](Bytes& b) { poke<float>(b, 92, 0.5f); }},
   };
   for (const Case& k : cases) {
     SCOPED_TRACE(k.name);
@@ -304,6 +311,197 @@ TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find(k.expected), std::string::npos) << e.what();
     }
+  }
+}
+
+// A coarse global field (about 3 voxels per object, f16): a few hundred bricks, built in milliseconds.
+sdf::GlobalFieldParams small_global(const Scene& scene) {
+  const glm::vec3 extent = scene.world_bounds(scene.instances[0]).extent();
+  sdf::GlobalFieldParams global;
+  global.voxel = std::max({extent.x, extent.y, extent.z}) / 3.0f;
+  global.band = 2;
+  global.format = sdf::SdfFormat::f16;
+  return global;
+}
+
+// sdf-global's global field rides in the same file: a round trip equal in every field, a cache
+// without it completed (and written back), one with other parameters stale for sdf-global but
+// still good for the other backends.
+TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
+  const sdf::GlobalFieldParams global = small_global(*scene_);
+  const sdf::SceneSdf with = sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), nullptr, &global);
+  ASSERT_TRUE(with.global_params.has_value());
+  ASSERT_GT(with.global_field.field.stored_bricks(), 0u);
+  ASSERT_FALSE(with.global_field.list_instances.empty());
+  const fs::path path = dir_.path() / "global.sdfcache";
+  sdf::write_sdf_cache(path, *scene_, with, small_grid());
+  const sdf::SceneSdf loaded = sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), nullptr, &global);
+  ASSERT_TRUE(loaded.global_params.has_value());
+  EXPECT_TRUE(sdf::same(*loaded.global_params, global));
+  EXPECT_EQ(loaded.global_params->voxel, global.voxel);
+  const sdf::GlobalField &a = with.global_field, &b = loaded.global_field;
+  EXPECT_EQ(a.field.origin, b.field.origin);
+  EXPECT_EQ(a.field.voxel, b.field.voxel);
+  EXPECT_EQ(a.field.bricks, b.field.bricks);
+  EXPECT_EQ(a.field.format, b.field.format);
+  EXPECT_EQ(a.field.band, b.field.band);
+  EXPECT_EQ(a.field.quantization, b.field.quantization);
+  EXPECT_EQ(a.field.indirection, b.field.indirection);
+  EXPECT_EQ(a.field.atlas, b.field.atlas);
+  EXPECT_EQ(a.field.coarse, b.field.coarse);
+  EXPECT_EQ(a.field.build_ms, b.field.build_ms);
+  EXPECT_EQ(a.voxel_request, b.voxel_request);
+  EXPECT_EQ(a.list_begin, b.list_begin);
+  EXPECT_EQ(a.list_instances, b.list_instances);
+  EXPECT_EQ(a.build_ms, b.build_ms);
+  EXPECT_TRUE(loaded.brick_fields.empty());
+  const fs::path again = dir_.path() / "global-again.sdfcache";
+  sdf::write_sdf_cache(again, *scene_, loaded, small_grid());
+  EXPECT_EQ(read_all(path), read_all(again));
+  EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash()));  // the other backends ignore it
+  const test::CommandResult inspect = test::run_sdfbench("inspect " + path.string());
+  EXPECT_EQ(inspect.exit_code, 0) << inspect.output;
+  EXPECT_NE(inspect.output.find("global field --global-voxel"), std::string::npos) << inspect.output;
+  EXPECT_NE(inspect.output.find("global list instances"), std::string::npos) << inspect.output;
+
+  sdf::GlobalFieldParams other = global;
+  other.format = sdf::SdfFormat::u8;
+  try {
+    sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), nullptr, &other);
+    ADD_FAILURE() << "a cache with other global field parameters was accepted";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("stale"), std::string::npos) << message;
+    EXPECT_NE(message.find(sdf::describe(global) + ", requested " + sdf::describe(other)), std::string::npos) << message;
+  }
+  try {
+    sdf::load_sdf_cache(write_valid(), *scene_, small_grid(), small_hash(), nullptr, &global);
+    ADD_FAILURE() << "a cache without a global field was accepted for sdf-global";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("holds no global field"), std::string::npos) << e.what();
+  }
+
+  // obtain_scene_sdf completes a cache without it (the same field as a fresh build), refuses one
+  // with other parameters under the default policy and rebuilds it when asked.
+  std::ostringstream log;
+  const fs::path plain = write_valid();
+  const sdf::SceneSdf completed = sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(),
+                                                        {plain.string(), sdf::BadCachePolicy::Refuse}, log, nullptr, &global);
+  ASSERT_TRUE(completed.global_params.has_value());
+  EXPECT_EQ(completed.global_field.field.atlas, a.field.atlas);
+  EXPECT_EQ(completed.global_field.list_instances, a.list_instances);
+  EXPECT_NE(log.str().find("SDF cache: added the global field (" + sdf::describe(global) + ") to '" + plain.string() + "'"),
+            std::string::npos)
+      << log.str();
+  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), nullptr, &global));
+  log.str("");
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, nullptr, &global);
+  EXPECT_NE(log.str().find("build skipped"), std::string::npos) << log.str();
+  EXPECT_EQ(log.str().find("added"), std::string::npos) << log.str();
+  EXPECT_THROW(sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log,
+                                     nullptr, &other),
+               Error);
+  log.str("");
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Rebuild}, log, nullptr, &other);
+  EXPECT_NE(log.str().find("rebuilding"), std::string::npos) << log.str();
+  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), nullptr, &other));
+  // Brick fields and the global field together: both completed in one pass.
+  const sdf::BrickFieldParams bricks{16, 3, sdf::SdfFormat::f32};
+  const fs::path both = write_valid();
+  log.str("");
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {both.string(), sdf::BadCachePolicy::Refuse}, log, &bricks, &global);
+  EXPECT_NE(log.str().find("added brick fields"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("added the global field"), std::string::npos) << log.str();
+  EXPECT_NO_THROW(sdf::load_sdf_cache(both, *scene_, small_grid(), small_hash(), &bricks, &global));
+}
+
+// Hostile global sections and parameters, re-checksummed: each refused with a clear message by
+// every loader (never a crash); f16 values that round just past the band, as the build stores
+// them, still accepted.
+TEST_F(SdfCacheTest, HostileGlobalFieldsAreRefused) {
+  const sdf::GlobalFieldParams global = small_global(*scene_);
+  const fs::path path = dir_.path() / "global.sdfcache";
+  sdf::write_sdf_cache(path, *scene_, sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), nullptr, &global), small_grid());
+
+  // A clamped f16 value rounds to the nearest half, past the band by up to its quantization
+  // (band / 2048): accepted; a value farther out: refused.
+  const Bytes valid = read_all(path);
+  const sdf::SdfCacheContents c = sdf::decode_sdf_cache(valid, "valid");
+  {
+    sdf::SdfCacheContents edge = c;
+    const float band = edge.global_field.field.band, quantization = edge.global_field.field.quantization;
+    for (const float v : {band, -band, band + 0.9f * quantization}) {
+      const uint16_t h = glm::packHalf1x16(v);
+      if (std::abs(glm::unpackHalf1x16(h)) > band + quantization) continue;  // not a value the build can store
+      std::memcpy(edge.global_field.field.atlas.data(), &h, sizeof h);
+      EXPECT_NO_THROW(sdf::decode_sdf_cache(sdf::encode_sdf_cache(edge), "edge")) << v << " for band " << band;
+    }
+    EXPECT_LE(std::abs(glm::unpackHalf1x16(glm::packHalf1x16(band))), band + quantization);
+    const uint16_t beyond = glm::packHalf1x16(-band * 1.01f);
+    std::memcpy(edge.global_field.field.atlas.data(), &beyond, sizeof beyond);
+    EXPECT_THROW(sdf::decode_sdf_cache(sdf::encode_sdf_cache(edge), "beyond"), Error);
+  }
+  auto section = [&](const std::string& name) {
+    for (const sdf::SdfCacheSection& s : c.sections)
+      if (s.name == name) return s;
+    throw std::logic_error("no section " + name);
+  };
+  const auto first_stored = [&](const Bytes& b) -> uint64_t {
+    const auto s = section("global indirection");
+    for (uint64_t i = 0; i < s.count; ++i)
+      if (peek<uint32_t>(b, s.offset + 4 * i) != sdf::kEmptyBrick) return s.offset + 4 * i;
+    throw std::logic_error("no stored brick");
+  };
+  const struct {
+    const char* name;
+    const char* expected;
+    std::function<void(Bytes&)> mutate;
+  } cases[] = {
+      {"list entry names no instance", "a brick list names an instance >= 10",
+       [&](Bytes& b) { poke<uint32_t>(b, section("global list instances").offset, 10u); }},
+      {"indirection entry out of range", "global field: a brick's atlas index is out of range",
+       [&](Bytes& b) { poke<uint32_t>(b, first_stored(b), 0x7fffffffu); }},
+      {"empty brick made stored past the end", "atlas index is out of range",
+       [&](Bytes& b) {
+         const auto s = section("global indirection");
+         for (uint64_t i = 0; i < s.count; ++i)
+           if (peek<uint32_t>(b, s.offset + 4 * i) == sdf::kEmptyBrick)
+             return poke<uint32_t>(b, s.offset + 4 * i, static_cast<uint32_t>(section("global list begin").count - 1));
+       }},
+      {"list_begin not monotone", "global field: list begin is not a valid prefix sum",
+       [&](Bytes& b) { poke<uint32_t>(b, section("global list begin").offset + 4, 0xffffffffu); }},
+      {"list_begin not starting at 0", "list begin is not a valid prefix sum",
+       [&](Bytes& b) { poke<uint32_t>(b, section("global list begin").offset, 1u); }},
+      {"list_begin not ending at the list size", "list begin is not a valid prefix sum",
+       [&](Bytes& b) {
+         const auto s = section("global list begin");
+         poke<uint32_t>(b, s.offset + 4 * (s.count - 1), peek<uint32_t>(b, s.offset + 4 * (s.count - 1)) - 1);
+       }},
+      {"list entry count differs from the header", "list instances, header says",
+       [&](Bytes& b) { poke<uint32_t>(b, section("global header").offset + 32, 12345u); }},
+      {"more stored bricks than bricks", "global field: more stored bricks than bricks",
+       [&](Bytes& b) { poke<uint32_t>(b, section("global header").offset + 28, 0xffffffffu); }},
+      {"too many bricks", "global field: bad dimensions",
+       [&](Bytes& b) { poke<uint32_t>(b, section("global header").offset + 16, 0x40000000u); }},
+      {"non-finite voxel", "global field: origin or voxel not finite",
+       [&](Bytes& b) { poke<float>(b, section("global header").offset + 12, NAN); }},
+      {"a value beyond the band", "global field: an atlas value is not finite or lies beyond the band",
+       [&](Bytes& b) { poke<uint16_t>(b, section("global atlas").offset, 0x7c00u); }},  // +inf in f16
+      {"negative coarse value", "global field: a coarse value is not finite or negative",
+       [&](Bytes& b) { poke<float>(b, section("global coarse level").offset, -1.0f); }},
+      {"non-finite coarse value", "coarse value is not finite",
+       [&](Bytes& b) { poke<float>(b, section("global coarse level").offset + 4, NAN); }},
+      {"bad band", "global field parameters", [&](Bytes& b) { poke<uint32_t>(b, 88, peek<uint32_t>(b, 88) & ~0xffu); }},
+      {"bad format", "global field parameters", [&](Bytes& b) { poke<uint32_t>(b, 88, 2u | 9u << 8); }},
+      {"non-finite voxel request", "global field parameters", [&](Bytes& b) { poke<float>(b, 92, NAN); }},
+      {"global sections without a global field", "section count", [&](Bytes& b) { poke<uint32_t>(b, 88, 0u); }},
+  };
+  for (const auto& k : cases) {
+    SCOPED_TRACE(k.name);
+    Bytes hostile = valid;
+    k.mutate(hostile);
+    sdf::reseal_sdf_cache(hostile);
+    expect_refused_everywhere(hostile, k.expected);
   }
 }
 

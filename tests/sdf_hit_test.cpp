@@ -1,7 +1,8 @@
 // SDF hits that agree with Embree beyond the thesis scenes (--hit exact, the default): a camera
 // very close to a surface, a grazing view along a large flat panel, scales 0.001 and 1000 in one
 // scene, overlapping instances, a camera inside a box whose walls lie on hash-cell faces, and
-// thesis:bunny:1000 in whitted mode. Every SDF backend (sdf-bricks with either --brick-trace),
+// thesis:bunny:1000 in whitted mode. Every SDF backend (sdf-bricks with either --brick-trace, and
+// sdf-global, whose field holds the camera in most of these scenes),
 // primary and shadow, at the default `compare` thresholds; sdf-cpu is the reference of the kernels.
 #include <cmath>
 
@@ -22,7 +23,8 @@ struct SdfVariant {
   const char* brick_trace;  // sdf-bricks' --brick-trace, else null
 };
 constexpr SdfVariant kSdfBackends[] = {
-    {"sdf-cpu", nullptr}, {"sdf-hash", nullptr}, {"sdf-octree", nullptr}, {"sdf-bricks", "instance"}, {"sdf-bricks", "min"}};
+    {"sdf-cpu", nullptr},           {"sdf-hash", nullptr},     {"sdf-octree", nullptr},
+    {"sdf-bricks", "instance"},     {"sdf-bricks", "min"},     {"sdf-global", nullptr}};
 constexpr RenderMode kModes[] = {RenderMode::Primary, RenderMode::Shadow};
 constexpr uint32_t kGrazingSteps = 48;
 
@@ -236,7 +238,7 @@ TEST(SdfHit, ThesisBunnyThousandWhitted) {
   const FrameImages expected = embree->render(request).images;
   AgreementThresholds thresholds;
   thresholds.min_psnr = 35.0;
-  for (const char* backend : {"sdf-hash", "sdf-octree", "sdf-bricks"}) {
+  for (const char* backend : {"sdf-hash", "sdf-octree", "sdf-bricks", "sdf-global"}) {
     auto renderer = create_renderer(backend, BackendOptions{});
     renderer->prepare(scene);
     const Agreement g = compare_frames(renderer->render(request).images, expected);

@@ -72,7 +72,7 @@ mkdir -p "$dir"
 echo "gpu_run: device '$name' -> $dir" >&2
 
 agreement="$dir/agreement.txt" disagreed=0
-backends=tri-aabb,bvh,sdf-hash,sdf-octree,sdf-bricks
+backends=tri-aabb,bvh,sdf-hash,sdf-octree,sdf-bricks,sdf-global
 if "$binary" render --scene thesis:sphere:1 --backend vk-rt --size 16x9 --frames 1 --warmup 0 --device "$device" >/dev/null 2>&1; then
   backends=$backends,vk-rt
 else
@@ -126,19 +126,21 @@ if [[ $tables_only -eq 0 ]]; then
   "$binary" merge "$parts"/*.csv --several-runs --csv "$dir/storage_vs_texel.csv" --markdown "$dir/storage_vs_texel.md" >/dev/null ||
     die "merging $parts/*.csv failed"
 
-  # sdf-bricks' fetch paths, each pair side by side in one sweep.
+  # The sampled fields' fetch paths (sdf-bricks, sdf-global), each pair side by side in one sweep.
   parts="$dir/brick_fetch"
   mkdir -p "$parts"
-  for mode in primary shadow; do
-    echo "gpu_run: sdf-bricks texel vs sampler fetch, $mode" >&2
-    status=0
-    "$binary" sweep --scene "$storage_scene" --backend sdf-bricks --mode "$mode" --size "$size" --frames "$frames" \
-      --budget-s "$budget" --brick-fetch texel,sampler --device "$device" --csv "$parts/$mode.csv" \
-      >"$parts/$mode.log" 2>&1 || status=$?
-    case $status in
-      0) ;; 2) disagreed=1 ;; 4) failed=1 ;;
-      *) die "the brick fetch sweep ($mode) failed; see $parts/$mode.log" ;;
-    esac
+  for backend in sdf-bricks sdf-global; do
+    for mode in primary shadow; do
+      echo "gpu_run: $backend texel vs sampler fetch, $mode" >&2
+      status=0
+      "$binary" sweep --scene "$storage_scene" --backend "$backend" --mode "$mode" --size "$size" --frames "$frames" \
+        --budget-s "$budget" --brick-fetch texel,sampler --device "$device" --csv "$parts/${backend}_$mode.csv" \
+        >"$parts/${backend}_$mode.log" 2>&1 || status=$?
+      case $status in
+        0) ;; 2) disagreed=1 ;; 4) failed=1 ;;
+        *) die "the brick fetch sweep ($backend, $mode) failed; see $parts/${backend}_$mode.log" ;;
+      esac
+    done
   done
   "$binary" merge "$parts"/*.csv --several-runs --csv "$dir/brick_fetch.csv" --markdown "$dir/brick_fetch.md" >/dev/null ||
     die "merging $parts/*.csv failed"

@@ -10,6 +10,10 @@ Writes, for whatever the CSVs contain:
                               instance evaluations/ray (sweeps of the hash and octree)
   brick_sweep.png             sdf-bricks sweeps over --voxels: Mrays/s and the depth error in voxels
                               vs voxels, one line per format, trace mode and hit mode
+  global_sweep.png            sdf-global sweeps over --global-voxel: Mrays/s, structure MB and build
+                              seconds vs the voxel size, one line per format and hit mode
+  structure_cost_<mode>.png   build seconds and structure MB vs object count, one panel per mesh,
+                              one line per backend that builds a structure
   cost_vs_triangles_<mode>_<n>objects.png
                               the mesh-size axis (meshes "<mesh>@<triangles>", table --triangles):
                               ms per frame, build ms, structure bytes and triangle work per ray vs
@@ -172,6 +176,72 @@ def is_brick_sweep(row):
     return row["table"] == "sweep" and row.get("voxels", "") != ""
 
 
+def is_global_sweep(row):
+    return row["table"] == "sweep" and number(row.get("global_voxel", "")) is not None
+
+
+def global_sweep(rows, out_dir):
+    sweep = [r for r in rows if is_global_sweep(r) and usable(r)]
+    if not sweep:
+        return
+    lines = defaultdict(list)
+    for r in sweep:
+        lines[(r["sdf_format"], r["hit"])].append(r)
+    metrics = (("mrays_per_s", "Mrays/s", 1.0), ("structure_bytes", "structure MB", 1e-6), ("build_ms", "build s", 1e-3))
+    fig, axes = plt.subplots(1, 3, figsize=(13, 3.8))
+    for k, ((fmt, hit), group) in enumerate(sorted(lines.items())):
+        color = plt.cm.tab10(k % 10)
+        for ax, (metric, _, scale) in zip(axes, metrics):
+            points = sorted((number(r["global_voxel"]), number(r[metric]) * scale, r) for r in group
+                            if number(r[metric]) is not None)
+            line, = ax.plot([p[0] for p in points], [p[1] for p in points], "-" if hit == "exact" else "--", marker="o",
+                            color=color, label=f"{fmt}, {hit} hits")
+            for x, y, r in points:
+                if not r["agreement"].startswith(("ok", "reference")):
+                    ax.plot([x], [y], "o", mfc="white", mec=line.get_color())
+    voxels = sorted({number(r["global_voxel"]) for r in sweep})
+    for ax, (_, title, _) in zip(axes, metrics):
+        ax.set_xscale("log", base=2)
+        ax.set_xticks(voxels, [f"{v:g}" for v in voxels])
+        ax.set_xlabel("global voxel (world units)")
+        ax.set_title(title)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[1].set_yscale("log")
+    axes[2].set_yscale("log")
+    axes[0].legend(fontsize=7)
+    fig.suptitle(f"{sweep[0]['scene']}, {sweep[0]['backend']} {sweep[0]['mode']} ({sweep[0]['width']}x{sweep[0]['height']}; "
+                 "hollow: disagrees with Embree)", fontsize=10)
+    save(fig, os.path.join(out_dir, "global_sweep.png"))
+
+
+def structure_cost(rows, out_dir):
+    table_rows = [r for r in rows if r["table"] != "sweep" and usable(r) and "@" not in r["mesh"]
+                  and number(r.get("structure_bytes", "")) is not None]
+    for mode in sorted({r["mode"] for r in table_rows}):
+        mode_rows = [r for r in table_rows if r["mode"] == mode]
+        meshes = list(dict.fromkeys(r["mesh"] for r in mode_rows))
+        fig, axes = plt.subplots(2, len(meshes), figsize=(4.2 * len(meshes), 6.4), squeeze=False)
+        for col, mesh in enumerate(meshes):
+            for row, (metric, title, scale) in enumerate((("build_ms", "build s", 1e-3),
+                                                          ("structure_bytes", "structure MB", 1e-6))):
+                ax = axes[row][col]
+                series = defaultdict(list)
+                for r in mode_rows:
+                    if r["mesh"] == mesh and number(r[metric]) is not None and number(r[metric]) > 0:
+                        series[r["backend"]].append((int(r["objects"]), number(r[metric]) * scale, r))
+                for backend, points in series.items():
+                    plot_series(ax, points, backend)
+                ax.set_xscale("log")
+                ax.set_yscale("log")
+                ax.set_title(f"{mesh}: {title}")
+                ax.set_xlabel("objects")
+                ax.grid(True, which="both", alpha=0.3)
+                ax.legend(fontsize=7)
+        fig.suptitle(f"structure build time and memory vs object count ({mode}; device: {mode_rows[0]['device']})",
+                     fontsize=10)
+        save(fig, os.path.join(out_dir, f"structure_cost_{mode}.png"))
+
+
 def brick_sweep(rows, out_dir):
     sweep = [r for r in rows if is_brick_sweep(r) and usable(r)]
     if not sweep:
@@ -207,7 +277,7 @@ def brick_sweep(rows, out_dir):
 
 
 def sweep_heatmaps(rows, out_dir):
-    sweep = [r for r in rows if r["table"] == "sweep" and usable(r) and not is_brick_sweep(r)]
+    sweep = [r for r in rows if r["table"] == "sweep" and usable(r) and not is_brick_sweep(r) and not is_global_sweep(r)]
     if not sweep:
         return
     cells = sorted({float(r["hash_cell"]) for r in sweep})
@@ -253,6 +323,8 @@ def main():
     thesis_vs_measured(rows, args.out_dir)
     sweep_heatmaps(rows, args.out_dir)
     brick_sweep(rows, args.out_dir)
+    global_sweep(rows, args.out_dir)
+    structure_cost(rows, args.out_dir)
     cost_vs_triangles(rows, args.out_dir)
 
 

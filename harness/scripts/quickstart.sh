@@ -11,7 +11,7 @@ sdfbench=build/sdfbench
 $sdfbench info
 $sdfbench table --quick --csv out/quick.csv --markdown out/quick.md
 harness/scripts/plot_results.py out/quick.csv --out-dir out/plots
-for backend in embree tri-aabb bvh vk-rt sdf-hash sdf-octree sdf-bricks; do
+for backend in embree tri-aabb bvh vk-rt sdf-hash sdf-octree sdf-bricks sdf-global; do
   $sdfbench render --scene thesis:bunny:100 --backend "$backend" --mode shadow --size 320x180 --frames 1 \
     --out "out/bunny100_$backend.png"
 done

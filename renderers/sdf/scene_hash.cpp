@@ -324,6 +324,7 @@ double build_ms(const SceneSdf& sdf) {
   double ms = sdf.hash.build_ms;
   for (const MeshDistanceGrid& g : sdf.mesh_grids) ms += g.build_ms;
   for (const BrickField& f : sdf.brick_fields) ms += f.build_ms;
+  if (sdf.global_params) ms += sdf.global_field.build_ms;
   return ms;
 }
 
@@ -331,19 +332,27 @@ size_t bytes(const SceneSdf& sdf) {
   size_t total = sdf.hash.bytes();
   for (const MeshDistanceGrid& g : sdf.mesh_grids) total += g.bytes();
   for (const BrickField& f : sdf.brick_fields) total += f.bytes();
+  if (sdf.global_params) total += sdf.global_field.bytes();
   return total;
 }
 
 SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
-                         const BrickFieldParams* bricks) {
+                         const BrickFieldParams* bricks, const GlobalFieldParams* global) {
   scene_hash_dims(scene, hash_params);  // an impossible hash is refused before the mesh grids are built
   if (bricks) validate(*bricks);
+  if (global) validate(*global);
   SceneSdf sdf;
   for (const Mesh& mesh : scene.meshes) sdf.mesh_grids.push_back(build_mesh_distance_grid(mesh, mesh_params));
   sdf.hash = build_scene_hash(scene, sdf.mesh_grids, hash_params);
   for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
   if (bricks) add_brick_fields(sdf, scene, mesh_params, *bricks);
+  if (global) add_global_field(sdf, scene, mesh_params, *global);
   return sdf;
+}
+
+void add_global_field(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const GlobalFieldParams& global) {
+  sdf.global_field = build_global_field(scene, sdf, mesh_params, global);
+  sdf.global_params = global;
 }
 
 void add_brick_fields(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const BrickFieldParams& bricks) {

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "renderers/sdf/brick_field.h"
+#include "renderers/sdf/global_field.h"
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "scenes/scene.h"
 
@@ -55,16 +56,20 @@ struct SceneHash {
 };
 
 // One scene's SDF: a distance grid per mesh (shared by its instances) and the scene hash; for
-// sdf-bricks also a sampled brick field per mesh (brick_field.h).
+// sdf-bricks also a sampled brick field per mesh (brick_field.h); for sdf-global one sampled field
+// over the whole scene (global_field.h).
 struct SceneSdf {
   std::vector<MeshDistanceGrid> mesh_grids;
   SceneHash hash;
   std::vector<glm::mat4> world_to_object;  // per instance (build_scene_sdf fills it): queries reuse it
   std::optional<BrickFieldParams> brick_params;  // set with brick_fields
   std::vector<BrickField> brick_fields;          // per mesh, or none
+  std::optional<GlobalFieldParams> global_params;  // set with global_field
+  GlobalField global_field;
 };
 
-// Build time and payload bytes of all of a scene's structures (mesh grids + hash + brick fields).
+// Build time and payload bytes of all of a scene's structures (mesh grids + hash + brick fields +
+// global field).
 double build_ms(const SceneSdf& sdf);
 size_t bytes(const SceneSdf& sdf);
 
@@ -75,11 +80,14 @@ glm::uvec3 scene_hash_dims(const Scene& scene, const SceneHashParams& params);
 // Throws Error when the scene hash, or its octrees as they grow, would pass the limits above
 // (naming the flags to change); long builds print progress on stderr (util/progress.h).
 SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGrid>& grids, const SceneHashParams& params);
-// `bricks` (sdf-bricks, else null): also a brick field per mesh.
+// `bricks` (sdf-bricks, else null): also a brick field per mesh; `global` (sdf-global, else
+// null): also the scene's global field.
 SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
-                         const BrickFieldParams* bricks = nullptr);
+                         const BrickFieldParams* bricks = nullptr, const GlobalFieldParams* global = nullptr);
 // Adds (replaces) the brick fields of `sdf`'s meshes, sampled from its mesh grids.
 void add_brick_fields(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const BrickFieldParams& bricks);
+// Adds (replaces) `sdf`'s global field, sampled from its mesh grids.
+void add_global_field(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const GlobalFieldParams& global);
 
 // Distance from world point p to one instance's surface: the mesh grid distance taken in the
 // instance's frame and scaled back (exact inside the mesh grid box, a lower bound outside).

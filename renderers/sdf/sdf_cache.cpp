@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -103,6 +104,8 @@ void write_sdf_cache(const fs::path& path, const Scene& scene, const SceneSdf& s
   c.hash = sdf.hash;
   c.brick_params = sdf.brick_params;
   c.brick_fields = sdf.brick_fields;
+  c.global_params = sdf.global_params;
+  if (sdf.global_params) c.global_field = sdf.global_field;
   const std::vector<std::byte> bytes = encode_sdf_cache(c);
   if (bytes.size() > kMaxSdfCacheBytes)  // the loader would refuse it
     throw Error("SDF cache '" + path.string() + "' would be " + describe_bytes(bytes.size()) + ", more than the limit for a cache (" +
@@ -120,7 +123,8 @@ std::vector<std::byte> read_cache(const InputFile& file, const fs::path& path) {
 
 // The cache already read (and bounded), checked completely and against this scene.
 SceneSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, const Scene& scene,
-                        const MeshGridParams& mesh_params, const SceneHashParams& hash_params, const BrickFieldParams* bricks) {
+                        const MeshGridParams& mesh_params, const SceneHashParams& hash_params, const BrickFieldParams* bricks,
+                        const GlobalFieldParams* global) {
   check_cacheable(path, scene, mesh_params);
   SdfCacheContents c = decode_sdf_cache(bytes, path.string());
   const std::string stale = "SDF cache '" + path.string() + "' is stale: ";
@@ -138,11 +142,16 @@ SceneSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, 
   if (bricks && !c.brick_params) throw Error(stale + "it holds no brick fields (requested " + describe(*bricks) + ")");
   if (bricks && !same(*c.brick_params, *bricks))
     throw Error(stale + "built with brick fields " + describe(*c.brick_params) + ", requested " + describe(*bricks));
+  if (global && !c.global_params) throw Error(stale + "it holds no global field (requested " + describe(*global) + ")");
+  if (global && !same(*c.global_params, *global))
+    throw Error(stale + "built with a global field " + describe(*c.global_params) + ", requested " + describe(*global));
   SceneSdf sdf;
   sdf.mesh_grids = std::move(c.mesh_grids);
   sdf.hash = std::move(c.hash);
   sdf.brick_params = c.brick_params;
   sdf.brick_fields = std::move(c.brick_fields);
+  sdf.global_params = c.global_params;
+  sdf.global_field = std::move(c.global_field);
   for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
   return sdf;
 }
@@ -150,42 +159,55 @@ SceneSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, 
 }  // namespace
 
 SceneSdf load_sdf_cache(const fs::path& path, const Scene& scene, const MeshGridParams& mesh_params,
-                        const SceneHashParams& hash_params, const BrickFieldParams* bricks) {
+                        const SceneHashParams& hash_params, const BrickFieldParams* bricks, const GlobalFieldParams* global) {
   return sdf_from_cache(read_cache(InputFile(path, "SDF cache", kMaxSdfCacheBytes), path), path, scene, mesh_params, hash_params,
-                        bricks);
+                        bricks, global);
 }
 
 SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
-                          const CacheOptions& cache, std::ostream& log, const BrickFieldParams* bricks) {
-  if (cache.path.empty()) return build_scene_sdf(scene, mesh_params, hash_params, bricks);
+                          const CacheOptions& cache, std::ostream& log, const BrickFieldParams* bricks,
+                          const GlobalFieldParams* global) {
+  if (bricks) validate(*bricks);  // bad parameters are named before any cache is read
+  if (global) validate(*global);
+  if (cache.path.empty()) return build_scene_sdf(scene, mesh_params, hash_params, bricks, global);
   const fs::path path = cache.path;
   std::error_code ec;
   if (fs::exists(path, ec)) {
     const auto start = std::chrono::steady_clock::now();
     // Outside the policy: a FIFO, device, directory or oversized file is no cache to replace.
     const InputFile file(path, "SDF cache", kMaxSdfCacheBytes);
+    std::optional<SceneSdf> loaded;
     try {
-      // A valid cache without brick fields is completed, not stale: its exact structures are
-      // what the brick fields are sampled from.
-      SceneSdf sdf = sdf_from_cache(read_cache(file, path), path, scene, mesh_params, hash_params, nullptr);
+      // A valid cache without brick fields (or without a global field) is completed, not stale:
+      // its exact structures are what the fields are sampled from.
+      SceneSdf sdf = sdf_from_cache(read_cache(file, path), path, scene, mesh_params, hash_params, nullptr, nullptr);
       if (bricks && sdf.brick_params && !same(*sdf.brick_params, *bricks))
         throw Error("SDF cache '" + path.string() + "' is stale: built with brick fields " + describe(*sdf.brick_params) +
                     ", requested " + describe(*bricks));
-      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      log << "SDF cache: loaded '" << path.string() << "' in " << static_cast<long>(ms) << " ms (build skipped)\n";
-      if (bricks && !sdf.brick_params) {
-        add_brick_fields(sdf, scene, mesh_params, *bricks);
-        write_sdf_cache(path, scene, sdf, mesh_params);
-        log << "SDF cache: added brick fields (" << describe(*bricks) << ") to '" << path.string() << "'\n";
-      }
-      return sdf;
+      if (global && sdf.global_params && !same(*sdf.global_params, *global))
+        throw Error("SDF cache '" + path.string() + "' is stale: built with a global field " + describe(*sdf.global_params) +
+                    ", requested " + describe(*global));
+      loaded = std::move(sdf);
     } catch (const Error& e) {
       if (cache.on_bad == BadCachePolicy::Refuse)
         throw Error(std::string(e.what()) + "; pass --on-bad-cache rebuild to replace it");
       log << "SDF cache: " << e.what() << "; rebuilding it\n";
     }
+    if (loaded) {
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      log << "SDF cache: loaded '" << path.string() << "' in " << static_cast<long>(ms) << " ms (build skipped)\n";
+      // Outside the policy: a field that cannot be built (or a cache too big to write) is no bad cache.
+      SceneSdf& sdf = *loaded;
+      const bool add_bricks = bricks && !sdf.brick_params, add_global = global && !sdf.global_params;
+      if (add_bricks) add_brick_fields(sdf, scene, mesh_params, *bricks);
+      if (add_global) add_global_field(sdf, scene, mesh_params, *global);
+      if (add_bricks || add_global) write_sdf_cache(path, scene, sdf, mesh_params);
+      if (add_bricks) log << "SDF cache: added brick fields (" << describe(*bricks) << ") to '" << path.string() << "'\n";
+      if (add_global) log << "SDF cache: added the global field (" << describe(*global) << ") to '" << path.string() << "'\n";
+      return std::move(sdf);
+    }
   }
-  SceneSdf sdf = build_scene_sdf(scene, mesh_params, hash_params, bricks);
+  SceneSdf sdf = build_scene_sdf(scene, mesh_params, hash_params, bricks, global);
   write_sdf_cache(path, scene, sdf, mesh_params);
   log << "SDF cache: built and wrote '" << path.string() << "'\n";
   return sdf;

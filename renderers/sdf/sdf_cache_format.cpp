@@ -35,6 +35,8 @@ struct FileHeader {
   uint32_t octree_depth, octree_min_objects;
   float octree_min_size;
   uint32_t lists;
+  uint32_t global;     // 0: no global field; else band | (format + 1) << 8
+  float global_voxel;  // the global field's voxel request (0: auto); 0 without one
 };
 struct SectionEntry {
   uint32_t kind, owner, element_bytes, reserved;
@@ -61,29 +63,45 @@ struct BrickHeader {
   uint32_t stored;
   double build_ms;
 };
+struct GlobalHeader {
+  glm::vec3 origin;
+  float voxel;
+  glm::uvec3 bricks;
+  uint32_t stored;
+  uint32_t list_entries;  // list instances
+  uint32_t reserved;
+  double build_ms;
+};
 static_assert(sizeof(FileHeader) == kSdfCacheHeaderBytes && sizeof(SectionEntry) == 32 && sizeof(GridHeader) == 48 &&
-              sizeof(HashHeader) == 40 && sizeof(BrickHeader) == 40);
+              sizeof(HashHeader) == 40 && sizeof(BrickHeader) == 40 && sizeof(GlobalHeader) == 48);
 
 enum SectionKind : uint32_t {
   kGridHeader, kCellBegin, kCellTriangles, kFaceNormals, kEdgeNormals, kVertexNormals,  // per mesh
   kHashHeader, kCellRoot, kNodes, kInstanceLists,                                       // scene
   kBrickHeader, kBrickSlots, kBrickAtlas, kBrickCoarse,                                 // per mesh, with brick fields
+  kGlobalHeader, kGlobalSlots, kGlobalAtlas, kGlobalCoarse, kGlobalListBegin, kGlobalListInstances,  // scene, with a global field
   kKindCount
 };
 constexpr uint32_t kMeshKinds = kHashHeader;
 constexpr uint32_t kSceneKinds = kBrickHeader - kHashHeader;
-constexpr uint32_t kBrickKinds = kKindCount - kBrickHeader;
+constexpr uint32_t kBrickKinds = kGlobalHeader - kBrickHeader;
+constexpr uint32_t kGlobalKinds = kKindCount - kGlobalHeader;
 constexpr const char* kKindNames[kKindCount] = {"grid header", "cell_begin", "cell_triangles", "face normals",
                                                 "edge normals", "vertex normals", "hash header", "cell_root",
                                                 "octree nodes", "instance lists", "brick header", "brick indirection",
-                                                "brick atlas", "brick coarse level"};
+                                                "brick atlas", "brick coarse level", "global header", "global indirection",
+                                                "global atlas", "global coarse level", "global list begin",
+                                                "global list instances"};
 constexpr uint32_t kElementBytes[kKindCount] = {sizeof(GridHeader), 4, 4, 12, 12, 12, sizeof(HashHeader), 4, 16, 4,
-                                                sizeof(BrickHeader), 4, 1, 4};
-bool per_mesh(uint32_t kind) { return kind < kMeshKinds || kind >= kBrickHeader; }
+                                                sizeof(BrickHeader), 4, 1, 4, sizeof(GlobalHeader), 4, 1, 4, 4, 4};
+bool per_mesh(uint32_t kind) { return kind < kMeshKinds || (kind >= kBrickHeader && kind < kGlobalHeader); }
 constexpr uint64_t kMaxBricks = 1ull << 26;
 
 uint32_t brick_word(const std::optional<BrickFieldParams>& p) {
   return p ? p->voxels | p->band << 16 | (static_cast<uint32_t>(p->format) + 1) << 24 : 0;
+}
+uint32_t global_word(const std::optional<GlobalFieldParams>& p) {
+  return p ? p->band | (static_cast<uint32_t>(p->format) + 1) << 8 : 0;
 }
 
 uint64_t align8(uint64_t n) { return (n + 7) & ~uint64_t{7}; }
@@ -167,9 +185,10 @@ class Reader {
     require(h.mesh_count <= kMaxMeshes, "mesh count " + std::to_string(h.mesh_count));
     require(h.instance_count <= kMaxInstances, "instance count " + std::to_string(h.instance_count));
     bricks_ = h.bricks != 0;
-    require(h.section_count == h.mesh_count * (kMeshKinds + (bricks_ ? kBrickKinds : 0)) + kSceneKinds,
+    global_ = h.global != 0;
+    require(h.section_count == h.mesh_count * (kMeshKinds + (bricks_ ? kBrickKinds : 0)) + kSceneKinds + (global_ ? kGlobalKinds : 0),
             "section count " + std::to_string(h.section_count) + " for " + std::to_string(h.mesh_count) + " meshes" +
-                (bricks_ ? " with brick fields" : ""));
+                (bricks_ ? " with brick fields" : "") + (global_ ? " and a global field" : ""));
     read_table(h);
     return h;
   }
@@ -206,18 +225,19 @@ class Reader {
     require(table_end <= payload_end, "section table runs past the end of the file");
     table_.resize(h.section_count);
     std::memcpy(table_.data(), bytes_.data() + sizeof(FileHeader), table_.size() * sizeof(SectionEntry));
+    mesh_count_ = h.mesh_count;
     index_.assign(h.section_count, UINT32_MAX);
     for (uint32_t i = 0; i < table_.size(); ++i) {
       const SectionEntry& e = table_[i];
       const std::string where = "section " + std::to_string(i);
-      require(e.kind < (bricks_ ? kKindCount : kBrickHeader), where + " has unknown kind " + std::to_string(e.kind));
+      require(known(e.kind), where + " has unknown kind " + std::to_string(e.kind));
       require(per_mesh(e.kind) ? e.owner < h.mesh_count : e.owner == 0, where + " (" + kKindNames[e.kind] + ") has owner " + std::to_string(e.owner));
       require(e.element_bytes == kElementBytes[e.kind], name(e.kind, e.owner) + ": element size " + std::to_string(e.element_bytes));
       require(e.offset % 8 == 0 && e.offset >= table_end && e.offset <= payload_end,
               name(e.kind, e.owner) + ": offset " + std::to_string(e.offset) + " outside the payload");
       require(e.count <= (payload_end - e.offset) / e.element_bytes, name(e.kind, e.owner) + ": " + std::to_string(e.count) +
                                                                           " elements run past the end of the file");
-      const size_t slot = slot_of(e.kind, e.owner, h.mesh_count);
+      const size_t slot = slot_of(e.kind, e.owner);
       require(index_[slot] == UINT32_MAX, name(e.kind, e.owner) + " appears twice");
       index_[slot] = i;
     }
@@ -230,15 +250,24 @@ class Reader {
       require(a.offset + a.count * a.element_bytes <= by_offset[i]->offset,
               name(a.kind, a.owner) + " overlaps " + name(by_offset[i]->kind, by_offset[i]->owner));
     }
-    mesh_count_ = h.mesh_count;
   }
-  // Mesh kinds per mesh, then the scene's, then (with brick fields) the brick kinds per mesh.
-  static size_t slot_of(uint32_t kind, uint32_t owner, uint32_t meshes) {
+  // The kinds this file's header allows: brick kinds only with brick fields, global kinds only
+  // with a global field.
+  bool known(uint32_t kind) const {
+    if (kind < kBrickHeader) return true;
+    if (kind < kGlobalHeader) return bricks_;
+    return kind < kKindCount && global_;
+  }
+  // Mesh kinds per mesh, then the scene's, then (with brick fields) the brick kinds per mesh, then
+  // (with a global field) the global kinds.
+  size_t slot_of(uint32_t kind, uint32_t owner) const {
+    const size_t meshes = mesh_count_;
     if (kind < kMeshKinds) return static_cast<size_t>(owner) * kMeshKinds + kind;
-    if (kind < kBrickHeader) return static_cast<size_t>(meshes) * kMeshKinds + (kind - kMeshKinds);
-    return static_cast<size_t>(meshes) * kMeshKinds + kSceneKinds + static_cast<size_t>(owner) * kBrickKinds + (kind - kBrickHeader);
+    if (kind < kBrickHeader) return meshes * kMeshKinds + (kind - kMeshKinds);
+    if (kind < kGlobalHeader) return meshes * kMeshKinds + kSceneKinds + static_cast<size_t>(owner) * kBrickKinds + (kind - kBrickHeader);
+    return meshes * (kMeshKinds + (bricks_ ? kBrickKinds : 0)) + kSceneKinds + (kind - kGlobalHeader);
   }
-  const SectionEntry& entry(uint32_t kind, uint32_t owner) const { return table_[index_[slot_of(kind, owner, mesh_count_)]]; }
+  const SectionEntry& entry(uint32_t kind, uint32_t owner) const { return table_[index_[slot_of(kind, owner)]]; }
 
   std::span<const std::byte> bytes_;
   std::string source_;
@@ -246,6 +275,7 @@ class Reader {
   std::vector<uint32_t> index_;  // slot_of(kind, owner) -> table entry
   uint32_t mesh_count_ = 0;
   bool bricks_ = false;
+  bool global_ = false;
 };
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -272,10 +302,35 @@ void check_params(const Reader& r, const FileHeader& h) {
     r.require(voxels >= 4 && voxels <= kMaxVoxels && band >= 1 && band <= 16 && format >= 1 && format <= 3,
               "brick field parameters");
   }
+  if (h.global != 0) {
+    const uint32_t band = h.global & 0xffu, format = (h.global >> 8) & 0xffu;
+    r.require(band >= 1 && band <= 16 && format >= 1 && format <= 3 && (h.global >> 16) == 0 && std::isfinite(h.global_voxel) &&
+                  h.global_voxel >= 0.0f,
+              "global field parameters");
+  } else {
+    r.require(h.global_voxel == 0.0f, "global field parameters (a voxel request without a global field)");
+  }
 }
 
 BrickFieldParams brick_params_of(uint32_t word) {
   return {word & 0xffffu, (word >> 16) & 0xffu, static_cast<SdfFormat>((word >> 24) - 1)};
+}
+GlobalFieldParams global_params_of(uint32_t word, float voxel) {
+  GlobalFieldParams p;
+  p.voxel = voxel;
+  p.band = word & 0xffu;
+  p.format = static_cast<SdfFormat>(((word >> 8) & 0xffu) - 1);
+  return p;
+}
+
+// Stored values within the band, up to the format's quantization (a clamped f16 value may round
+// past the band by up to band / 2048); u8 cannot leave it. A NaN fails the comparison.
+void check_atlas_values(const Reader& r, const BrickField& f, const std::string& what) {
+  if (f.format == SdfFormat::u8) return;
+  const float limit = f.band + f.quantization;
+  const size_t samples = f.atlas.size() / bytes_per_sample(f.format);
+  for (size_t i = 0; i < samples; ++i)
+    r.require(std::abs(atlas_value(f, i)) <= limit, what + ": an atlas value is not finite or lies beyond the band");
 }
 
 // A mesh's brick field: every index in range, every count what its header implies, values within
@@ -304,14 +359,61 @@ BrickField read_bricks(const Reader& r, uint32_t mesh, const BrickFieldParams& p
   f.atlas = r.section<uint8_t>(kBrickAtlas, mesh);
   r.require(f.atlas.size() == uint64_t{h.stored} * kBrickSamples * bytes_per_sample(params.format),
             what + ": atlas of " + std::to_string(f.atlas.size()) + " bytes for " + std::to_string(h.stored) + " bricks");
-  const size_t samples = f.atlas.size() / bytes_per_sample(params.format);
-  for (size_t i = 0; i < samples && params.format != SdfFormat::u8; ++i)
-    r.require(std::abs(atlas_value(f, i)) <= f.band * 1.0001f, what + ": an atlas value is not finite or lies beyond the band");
+  check_atlas_values(r, f, what);
   f.coarse = r.section<float>(kBrickCoarse, mesh);
   r.require(f.coarse.size() == cell_product(h.bricks + 1u), what + ": coarse level count differs from its brick corners");
   r.require(std::all_of(f.coarse.begin(), f.coarse.end(), [](float v) { return std::isfinite(v); }),
             what + ": non-finite coarse value");
   return f;
+}
+
+// The scene's global field: the brick checks (with the global sections), coarse values as the
+// lower bounds they are (finite, >= 0), and the per-brick instance lists as a prefix sum over the
+// stored bricks whose every entry names an instance of the scene.
+GlobalField read_global(const Reader& r, const GlobalFieldParams& params, uint32_t instance_count) {
+  const std::string what = "global field";
+  const GlobalHeader h = r.single<GlobalHeader>(kGlobalHeader, 0);
+  r.require(instance_count >= 1, what + ": the scene has no instances");
+  r.require(finite(h.origin) && positive_finite(h.voxel), what + ": origin or voxel not finite");
+  r.require(h.bricks.x && h.bricks.y && h.bricks.z && cell_product(h.bricks) <= kMaxBricks, what + ": bad dimensions");
+  r.require(h.stored <= cell_product(h.bricks), what + ": more stored bricks than bricks");
+  GlobalField g;
+  g.voxel_request = params.voxel;
+  g.build_ms = h.build_ms;
+  BrickField& f = g.field;
+  f.origin = h.origin;
+  f.voxel = h.voxel;
+  f.bricks = h.bricks;
+  f.format = params.format;
+  f.band = static_cast<float>(params.band) * h.voxel;
+  f.quantization = brick_quantization(params.format, f.band);
+  f.build_ms = h.build_ms;
+  r.require(positive_finite(f.band) && std::isfinite(f.quantization), what + ": band not finite");
+  f.indirection = r.section<uint32_t>(kGlobalSlots, 0);
+  r.require(f.indirection.size() == cell_product(h.bricks), what + ": indirection has " + std::to_string(f.indirection.size()) +
+                                                                  " entries for " + std::to_string(cell_product(h.bricks)) + " bricks");
+  r.require(std::all_of(f.indirection.begin(), f.indirection.end(), [&](uint32_t s) { return s == kEmptyBrick || s < h.stored; }),
+            what + ": a brick's atlas index is out of range");
+  f.atlas = r.section<uint8_t>(kGlobalAtlas, 0);
+  r.require(f.atlas.size() == uint64_t{h.stored} * kBrickSamples * bytes_per_sample(params.format),
+            what + ": atlas of " + std::to_string(f.atlas.size()) + " bytes for " + std::to_string(h.stored) + " bricks");
+  check_atlas_values(r, f, what);
+  f.coarse = r.section<float>(kGlobalCoarse, 0);
+  r.require(f.coarse.size() == cell_product(h.bricks + 1u), what + ": coarse level count differs from its brick corners");
+  r.require(std::all_of(f.coarse.begin(), f.coarse.end(), [](float v) { return std::isfinite(v) && v >= 0.0f; }),
+            what + ": a coarse value is not finite or negative (it is a distance bound)");
+  g.list_begin = r.section<uint32_t>(kGlobalListBegin, 0);
+  g.list_instances = r.section<uint32_t>(kGlobalListInstances, 0);
+  r.require(g.list_begin.size() == uint64_t{h.stored} + 1, what + ": list begin has " + std::to_string(g.list_begin.size()) +
+                                                               " entries for " + std::to_string(h.stored) + " stored bricks");
+  r.require(g.list_instances.size() == h.list_entries, what + ": " + std::to_string(g.list_instances.size()) +
+                                                           " list instances, header says " + std::to_string(h.list_entries));
+  r.require(g.list_begin.front() == 0 && std::is_sorted(g.list_begin.begin(), g.list_begin.end()) &&
+                g.list_begin.back() == g.list_instances.size(),
+            what + ": list begin is not a valid prefix sum of the brick lists");
+  r.require(std::all_of(g.list_instances.begin(), g.list_instances.end(), [&](uint32_t k) { return k < instance_count; }),
+            what + ": a brick list names an instance >= " + std::to_string(instance_count));
+  return g;
 }
 
 template <class T>
@@ -412,6 +514,8 @@ std::vector<std::byte> encode_sdf_cache(const SdfCacheContents& c) {
   h.octree_min_size = c.hash_params.octree_min_size;
   h.lists = static_cast<uint32_t>(c.hash_params.lists);
   h.bricks = brick_word(c.brick_params);
+  h.global = global_word(c.global_params);
+  h.global_voxel = c.global_params ? c.global_params->voxel : 0.0f;
 
   std::vector<GridHeader> grid_headers;
   for (uint32_t m = 0; m < meshes; ++m) {
@@ -447,6 +551,17 @@ std::vector<std::byte> encode_sdf_cache(const SdfCacheContents& c) {
       w.add(kBrickCoarse, m, f.coarse);
     }
   }
+  const GlobalField& g = c.global_field;
+  const GlobalHeader global_header{g.field.origin, g.field.voxel, g.field.bricks, static_cast<uint32_t>(g.field.stored_bricks()),
+                                   static_cast<uint32_t>(g.list_instances.size()), 0, g.build_ms};
+  if (c.global_params) {
+    w.add_one(kGlobalHeader, 0, global_header);
+    w.add(kGlobalSlots, 0, g.field.indirection);
+    w.add(kGlobalAtlas, 0, g.field.atlas);
+    w.add(kGlobalCoarse, 0, g.field.coarse);
+    w.add(kGlobalListBegin, 0, g.list_begin);
+    w.add(kGlobalListInstances, 0, g.list_instances);
+  }
   return w.finish(h);
 }
 
@@ -475,6 +590,10 @@ SdfCacheContents decode_sdf_cache(std::span<const std::byte> bytes, const std::s
   if (h.bricks != 0) {
     c.brick_params = brick_params_of(h.bricks);
     for (uint32_t m = 0; m < h.mesh_count; ++m) c.brick_fields.push_back(read_bricks(r, m, *c.brick_params));
+  }
+  if (h.global != 0) {
+    c.global_params = global_params_of(h.global, h.global_voxel);
+    c.global_field = read_global(r, *c.global_params, h.instance_count);
   }
   c.sections = r.describe();
   return c;

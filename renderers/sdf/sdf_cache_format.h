@@ -1,5 +1,5 @@
 #pragma once
-// The SDF cache file format, version 1 (little-endian, every section 8-byte aligned):
+// The SDF cache file format, version 2 (little-endian, every section 8-byte aligned):
 //
 //   header          magic "SDFBCACH", format version, header size, file size, scene geometry
 //                   hash, mesh/instance/section counts, every build parameter
@@ -9,10 +9,14 @@
 //                   scene: hash header, cell_root, octree nodes, instance lists;
 //                   only when the header's brick word is not 0 (sdf-bricks, issue 28), per mesh:
 //                   brick header (origin, voxel, bricks, stored count, build ms), indirection,
-//                   atlas (bytes in the word's format), coarse level
+//                   atlas (bytes in the word's format), coarse level;
+//                   only when the header's global word is not 0 (sdf-global, issue 29), once:
+//                   global header (origin, voxel, bricks, stored count, list entry count, build
+//                   ms), indirection, atlas (in the word's format), coarse level (lower bounds,
+//                   >= 0), list begin (stored + 1 prefix offsets), list instances
 //   checksum        FNV-1a 64 of every byte before it
-// (Caches without brick fields are the same bytes as before them; a reader from before them
-// refuses a cache with them: unknown section kinds.)
+// (Version 2 added the global field's two header words, its voxel request as float bits among
+// them; a version 1 file is refused as another version.)
 //
 // decode_sdf_cache trusts nothing: sizes, offsets, overlaps, counts, every index and every
 // float are checked before a structure is returned, so a renderer can walk the result (and
@@ -26,12 +30,13 @@
 #include <vector>
 
 #include "renderers/sdf/brick_field.h"
+#include "renderers/sdf/global_field.h"
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "renderers/sdf/scene_hash.h"
 
 namespace sdfbench::sdf {
 
-inline constexpr uint32_t kSdfCacheVersion = 1;
+inline constexpr uint32_t kSdfCacheVersion = 2;
 
 // The largest cache sdfbench writes or reads: a reader refuses a bigger file by its size before
 // allocating anything (the structures it would hold would not fit a renderer's memory either).
@@ -55,6 +60,8 @@ struct SdfCacheContents {
   SceneHash hash;
   std::optional<BrickFieldParams> brick_params;  // with a brick field per mesh, or none
   std::vector<BrickField> brick_fields;
+  std::optional<GlobalFieldParams> global_params;  // with the scene's global field, or none
+  GlobalField global_field;
   std::vector<SdfCacheSection> sections;  // filled by decode (for inspect)
   uint64_t file_bytes = 0;                // filled by decode
 };
@@ -69,7 +76,7 @@ SdfCacheContents decode_sdf_cache(std::span<const std::byte> bytes, const std::s
 // (magic, version, header size) and the size it declares against the file's `file_bytes`, so a
 // file that is no cache of this version costs a few bytes to refuse, not its size. Throws the
 // Error decode_sdf_cache would.
-inline constexpr size_t kSdfCacheHeaderBytes = 88;
+inline constexpr size_t kSdfCacheHeaderBytes = 96;
 void check_sdf_cache_header(std::span<const std::byte> head, uint64_t file_bytes, const std::string& source);
 
 // Recomputes the trailing checksum in place (the fuzz target uses it to get past the checksum

@@ -34,10 +34,11 @@ std::string to_string(HitMode hit) {
 }
 
 void check_exact_field_hit(HitMode hit, const std::string& backend) {
-  if (hit == HitMode::field && backend != "sdf-bricks")
-    throw Error("--hit field: " + backend + " has no sampled field (only sdf-bricks); use --hit exact or thesis");
-  if (hit == HitMode::thesis && backend == "sdf-bricks")
-    throw Error("--hit thesis: sdf-bricks takes exact hits (default) or the field's own (--hit field)");
+  const bool sampled = backend == "sdf-bricks" || backend == "sdf-global";
+  if (hit == HitMode::field && !sampled)
+    throw Error("--hit field: " + backend + " has no sampled field (only sdf-bricks and sdf-global); use --hit exact or thesis");
+  if (hit == HitMode::thesis && sampled)
+    throw Error("--hit thesis: " + backend + " takes exact hits (default) or the field's own (--hit field)");
 }
 
 SphereTracer::SphereTracer(const Scene& scene, const SceneSdf& sdf, const SphereTraceParams& params)

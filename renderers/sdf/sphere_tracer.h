@@ -14,11 +14,12 @@ namespace sdfbench::sdf {
 
 // Where a converged ray hits: `exact` intersects it with the triangles listed there (exact_hit.h;
 // the default: t, normal and uv where the ray meets the surface, as in Embree); `thesis` takes the
-// converged point and the closest point on the nearest triangle (thesis 5.2); `field` (sdf-bricks
-// only) the sampled field's own zero crossing and gradient normal (sdf_bricks.comp).
+// converged point and the closest point on the nearest triangle (thesis 5.2); `field` (sdf-bricks,
+// sdf-global) the sampled field's own zero crossing and gradient normal (brick_trace.glsl).
 enum class HitMode { exact, thesis, field };
 std::string to_string(HitMode hit);
-// Throws Error for --hit field on a backend without a sampled field (all but sdf-bricks).
+// Throws Error for --hit field on a backend without a sampled field (all but sdf-bricks and
+// sdf-global), and for --hit thesis on those two.
 void check_exact_field_hit(HitMode hit, const std::string& backend);
 
 struct SphereTraceParams {

@@ -38,6 +38,8 @@ struct FieldSample {
   float bound;  // a lower bound on the unsigned distance to the mesh (mesh units)
   float value;  // the trilinear field (signed) in a stored brick; elsewhere the bound
   bool stored;  // p lies in a stored brick
+  uint slot;    // that brick's index in the atlas, else BRICK_EMPTY
+  bool empty;   // p lies in an empty brick of the lattice: no surface in all of it
 };
 
 SHARED_FN BrickFieldInfo brick_field_info(uint mesh) {
@@ -77,6 +79,8 @@ SHARED_FN float trilinear(float c000, float c100, float c010, float c110, float 
 SHARED_FN FieldSample sample_field(BrickFieldInfo f, vec3 p) {
   FieldSample s;
   s.stored = false;
+  s.slot = BRICK_EMPTY;
+  s.empty = false;
   vec3 hi = brick_lattice_max(f);
   vec3 gap = max(max(f.origin - p, p - hi), vec3(0.0f));
   if (gap.x > 0.0f || gap.y > 0.0f || gap.z > 0.0f) {
@@ -101,6 +105,7 @@ SHARED_FN FieldSample sample_field(BrickFieldInfo f, vec3 p) {
                         coarse_value(i + dz + dy + 1), fc);
     s.bound = max(f.band, abs(v) - trilinear_slack(fc, f.voxel * float(BRICK_CELLS)) - 1e-6f * abs(v));
     s.value = s.bound;
+    s.empty = true;
     return s;
   }
   uvec3 l = c - b * BRICK_CELLS;
@@ -117,6 +122,7 @@ SHARED_FN FieldSample sample_field(BrickFieldInfo f, vec3 p) {
   s.bound = max(abs(s.value) - trilinear_slack(fr, f.voxel) - f.quantization, 0.0f);
 #endif
   s.stored = true;
+  s.slot = slot;
   return s;
 }
 

@@ -23,63 +23,11 @@
 #include "ray_triangle.glsl"
 #include "sdf_exact_crossing.glsl"
 
-layout(binding = 18) uniform utextureBuffer brick_records;  // RGBA32UI, BRICK_FIELD_TEXELS per mesh
-layout(binding = 19) uniform utextureBuffer brick_slots;    // R32UI stored-brick index per brick, or BRICK_EMPTY
-layout(binding = 21) uniform textureBuffer brick_coarse;    // R32F, one sample per brick corner
-#ifdef BRICK_SAMPLER
-// The stored bricks side by side in a 3D image (sdf.atlas_bricks per row and slice), filtered by
-// the sampler: one fetch per sample instead of eight.
-layout(binding = 20) uniform sampler3D brick_atlas;
-float brick_filtered(uint slot, vec3 local) {
-  uvec3 b = uvec3(slot % sdf.atlas_bricks.x, (slot / sdf.atlas_bricks.x) % sdf.atlas_bricks.y,
-                  slot / (sdf.atlas_bricks.x * sdf.atlas_bricks.y));
-  return textureLod(brick_atlas, (vec3(b * 8u) + local + 0.5f) * sdf.atlas_inverse_size.xyz, 0.0f).x;
-}
-float brick_filter_slack(float voxel, float band) { return sdf.options.z * voxel + band * (1.0f / 1024.0f); }
-#else
-layout(binding = 20) uniform textureBuffer brick_atlas;     // R32F / R16F / R8_UNORM, 8^3 samples per stored brick
-float brick_value(int i) { return texelFetch(brick_atlas, i).x; }
-#endif
+#include "brick_field_bindings.glsl"
+#include "brick_trace.glsl"
 
-uvec4 brick_record(int i) { return texelFetch(brick_records, i); }
-uint brick_slot(int i) { return texelFetch(brick_slots, i).x; }
-float coarse_value(int i) { return texelFetch(brick_coarse, i).x; }
-float brick_decode(float raw, float band) {
-#ifdef BRICK_U8
-  return (raw * 2.0f - 1.0f) * band;
-#else
-  return raw;
-#endif
-}
-#include "brick_sample.glsl"
-
-#define BRICK_NEAR_VOXELS 1.0f
-#define BRICK_WINDOW_VOXELS 2.0f
-// A window's exact test starts this far behind its point (never before the ray's start): a step
-// by a bound that is the exact distance (a flat mesh seen straight on) lands on the surface, and
-// rounding may put it a hair beyond.
-#define BRICK_BEHIND_VOXELS 0.05f
-#define BRICK_FIELD_HIT_VOXELS 0.25f
 // The most leaves one ray walks (a bound on the loop; a pixel past it is reported cut short).
 #define BRICK_MAX_LEAVES 65536u
-
-// A rounding error of the ray's point at t (relative to its coordinates, not the scene: scales
-// 0.001 and 1000 share scenes). A segment's exact test reaches this far past a leaf's (or the
-// hash box's) far side, where a surface lying on that face (walls on hash-cell faces, a panel on
-// the hash box) is crossed; and a leaf is looked up this far along, so that at a face the leaf
-// found is the one the ray enters.
-float face_slack(Ray ray, float t) {
-  vec3 p = abs(ray.origin + t * ray.dir);
-  return 1e-5f * max(max(max(p.x, p.y), max(p.z, abs(t))), 1e-30f);
-}
-
-// A ray in an instance's frame (t is the same parameter in both) with its field.
-struct InstanceRay {
-  vec3 o, d;
-  float scale;  // world units per mesh unit
-  uint mesh;
-  BrickFieldInfo f;
-};
 
 InstanceRay instance_ray(uint instance, Ray ray) {
   int record = int(instance) * SDF_INSTANCE_TEXELS;
@@ -92,55 +40,15 @@ InstanceRay instance_ray(uint instance, Ray ray) {
   return r;
 }
 
-FieldSample sample_at(InstanceRay r, float t) {
-  COUNT(COUNTER_FIELD_SAMPLES, 1u);
-  return sample_field(r.f, r.o + t * r.d);
-}
-
-// The steps of the pixel's current ray, against --max-steps (sdf.hash_dims.w).
-uint ray_steps;
-
-// --hit field: the hit's world normal and the ray's result.
-vec3 field_normal;
-
-// The field's gradient at object point q (central differences half a voxel apart), in world space.
-vec3 field_gradient(InstanceRay r, int record, vec3 q) {
-  float e = 0.5f * r.f.voxel;
-  vec3 g;
-  for (int axis = 0; axis < 3; ++axis) {
-    vec3 step = vec3(0.0f);
-    step[axis] = e;
-    COUNT(COUNTER_FIELD_SAMPLES, 2u);
-    g[axis] = sample_field(r.f, q + step).value - sample_field(r.f, q - step).value;
-  }
-  // Normals go to world space by the transpose of world_to_object (rows at record + 2).
+// The field's gradient at object point q, in world space: normals go by the transpose of
+// world_to_object (its rows at record + 2).
+vec3 world_gradient(InstanceRay r, int record, vec3 q) {
+  vec3 g = field_gradient(r, q);
   vec3 n = g.x * uintBitsToFloat(SDF_FETCH(instance_records, record + 2).xyz) +
            g.y * uintBitsToFloat(SDF_FETCH(instance_records, record + 3).xyz) +
            g.z * uintBitsToFloat(SDF_FETCH(instance_records, record + 4).xyz);
   return length(n) > 0.0f ? normalize(n) : -normalize(vec3(1.0f));
 }
-
-// --hit field: secant steps on the last bracket, from (t0, v0) (the step before, above the hit
-// threshold) and (t1, v1) (below it), each kept within [t0, t1 + a voxel].
-float refine_field_hit(InstanceRay r, float t0, float v0, float t1, float v1) {
-  float limit = t1 + r.f.voxel * r.scale;
-  for (int k = 0; k < 3 && v0 != v1; ++k) {
-    float t = clamp(t1 - v1 * (t1 - t0) / (v1 - v0), t0, limit);
-    float v = sample_at(r, t).value * r.scale;
-    t0 = t1;
-    v0 = v1;
-    t1 = t;
-    v1 = v;
-  }
-  return t1;
-}
-
-struct BrickHit {
-  float t;
-  uint instance;
-  uint triangle;  // SDF_NONE for a field hit
-  vec2 uv;
-};
 
 #ifndef BRICK_TRACE_MIN
 // One instance over the ray's [t_lo, t_hi] (world t): sphere tracing by the field's bound; near
@@ -160,7 +68,7 @@ bool trace_instance(Ray ray, uint instance, float t_lo, float t_hi, inout BrickH
       float th = v_previous == SDF_FAR ? t : refine_field_hit(r, t_previous, v_previous, t, v);
       if (th >= best.t) return false;
       best = BrickHit(th, instance, SDF_NONE, vec2(0.0f));
-      field_normal = field_gradient(r, int(instance) * SDF_INSTANCE_TEXELS, r.o + th * r.d);
+      field_normal = world_gradient(r, int(instance) * SDF_INSTANCE_TEXELS, r.o + th * r.d);
       return true;
     }
     t_previous = t;
@@ -342,7 +250,7 @@ bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
       InstanceRay r = instance_ray(s.instance, ray);
       float th = previous_instance == s.instance ? refine_field_hit(r, t_previous, v_previous, t, s.value) : t;
       best = BrickHit(th, s.instance, SDF_NONE, vec2(0.0f));
-      field_normal = field_gradient(r, int(s.instance) * SDF_INSTANCE_TEXELS, r.o + th * r.d);
+      field_normal = world_gradient(r, int(s.instance) * SDF_INSTANCE_TEXELS, r.o + th * r.d);
       return th < tmax;
     }
     t_previous = t;
@@ -386,40 +294,5 @@ bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
   return false;
 }
 #endif
-
-bool closest_hit(Ray ray, float tmax, out Hit hit) {
-  BrickHit b;
-  if (!trace_bricks(ray, tmax, b) || b.t >= tmax) return false;
-  int record = int(b.instance) * SDF_INSTANCE_TEXELS;
-  uvec4 o0 = SDF_FETCH(instance_records, record + 5);
-  hit.t = max(b.t, 0.0f);
-  hit.instance = b.instance;
-  hit.material = o0.w;
-  hit.uv = b.uv;
-  if (b.triangle == SDF_NONE) {
-    hit.prim = NO_INSTANCE;
-    hit.normal = field_normal;
-    return true;
-  }
-  int n = int(3u * b.triangle);
-  vec3 normal = interpolate_barycentric(SDF_FETCH(tri_normals, n).xyz, SDF_FETCH(tri_normals, n + 1).xyz,
-                                        SDF_FETCH(tri_normals, n + 2).xyz, b.uv);
-  vec3 o1 = uintBitsToFloat(SDF_FETCH(instance_records, record + 6).xyz);
-  vec3 o2 = uintBitsToFloat(SDF_FETCH(instance_records, record + 7).xyz);
-  uint mesh = SDF_FETCH(instance_records, record).w;
-  uint first_triangle = SDF_FETCH(mesh_records, int(mesh) * SDF_MESH_TEXELS + 2).w;
-  hit.prim = b.triangle - first_triangle;
-  hit.normal = normalize(vec3(dot(uintBitsToFloat(o0.xyz), normal), dot(o1, normal), dot(o2, normal)));
-  return true;
-}
-
-// Exact hits lie on the surface; a field hit lies within a fraction of a voxel of it, so rays
-// leave it from farther out (sdf.options.y: a few of the scene's largest voxels).
-float mesh_hit_tolerance() { return sdf.options.y; }
-
-bool any_hit(Ray ray, float tmax) {
-  BrickHit b;
-  return trace_bricks(ray, tmax, b) && b.t < tmax;
-}
 
 #include "render_main.glsl"

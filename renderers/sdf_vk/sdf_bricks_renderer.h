@@ -4,9 +4,8 @@
 
 #include "renderers/renderer.h"
 #include "renderers/sdf/brick_field.h"
+#include "renderers/sdf_vk/brick_field_tables.h"
 #include "renderers/sdf_vk/sdf_gpu_tables.h"
-#include "renderers/vulkan/gpu_buffer.h"
-#include "renderers/vulkan/gpu_image.h"
 #include "renderers/vulkan/vulkan_context.h"
 #include "renderers/vulkan/vulkan_frame_runner.h"
 
@@ -33,14 +32,9 @@ class SdfBricksRenderer : public Renderer {
   VulkanContext context_;
   SdfGpuTables tables_;
   bool sampler_ = false;  // --brick-fetch, resolved: the atlas as a filtered 3D image
-  GpuBuffer brick_records_, brick_slots_, brick_atlas_, brick_coarse_;
-  GpuImage3D brick_image_;
+  BrickFieldTables brick_tables_;
   VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
 };
-
-// --brick-fetch as used on `device`: "auto" is the sampler on a GPU (hardware filtering) and, on
-// a CPU device (lavapipe), what measured faster there (README, "sdf-bricks").
-bool use_sampler(const std::string& brick_fetch, const VulkanDeviceInfo& device);
 
 // The brick field parameters of `params` (--voxels, --sdf-format, --brick-band); throws Error
 // for values outside their ranges.

@@ -1,8 +1,19 @@
-// --hit exact's ray-triangle crossing search of the SDF kernels (sdf_trace.comp, sdf_bricks.comp)
+// --hit exact's ray-triangle crossing search of the SDF kernels (sdf_trace.comp, sdf_bricks.comp,
+// sdf_global.comp)
 // and the ray's clip to the scene hash box. Needs sdf_scene_distance.glsl, ray_box.glsl and
 // ray_triangle.glsl included before it.
 #ifndef SDFBENCH_SDF_EXACT_CROSSING_GLSL
 #define SDFBENCH_SDF_EXACT_CROSSING_GLSL
+
+// Per mesh grid cell (indexed as grid_cells) the (begin, end) of its entries in crossing_triangles,
+// each a global triangle whose box meets the cell (sdf_gpu_arrays.h).
+#ifdef SDF_STORAGE_TABLES
+layout(std430, binding = 23) readonly buffer CrossingCells { uvec2 crossing_cells[]; };
+layout(std430, binding = 24) readonly buffer CrossingTriangles { uint crossing_triangles[]; };
+#else
+layout(binding = 23) uniform utextureBuffer crossing_cells;      // RG32UI
+layout(binding = 24) uniform utextureBuffer crossing_triangles;  // R32UI
+#endif
 
 // The ray's segment inside the hash box (outside it there is nothing to hit), up to tmax.
 bool clip_to_hash_box(Ray ray, float tmax, out float t0, out float t1) {
@@ -32,8 +43,8 @@ vec3 transform_direction(int row0, vec3 v) {
 
 // --hit exact: the earliest crossing of the ray with a triangle of `instance` for t in
 // [t_lo, t_hi], walking the mesh-grid cells that segment crosses and testing the triangles each
-// lists: every crossing inside a cell is found there, since the cell lists each triangle that is
-// the nearest one to a point of the cell (a point on a triangle is nearest to it). False when
+// lists: every crossing inside a cell is found there, since the cell's crossing list holds every
+// triangle whose box meets the cell (sdf_gpu_arrays.cpp, add_crossing_lists). False when
 // there is none: the ray passed that surface within epsilon (a silhouette). As
 // exact_crossing() in renderers/sdf/exact_hit.cpp.
 // The ray is given in the mesh's frame (o + t d, t the world ray's parameter).
@@ -57,14 +68,16 @@ bool exact_crossing_in_mesh(vec3 o, vec3 d, uint mesh, float t_lo, float t_hi, o
     float t_enter = -3.0e38f, t_exit = 3.0e38f;
     clip_to_box(o, d, cell_lo, cell_lo + cell_size, t_enter, t_exit);
     t_exit += 1e-5f * abs(t_exit);  // rounding of the cell walls
-    uvec2 range = SDF_FETCH(grid_cells, int(r1.w + c.x + dims.x * (c.y + dims.y * c.z))).xy;
+    uvec2 range = SDF_FETCH(crossing_cells, int(r1.w + c.x + dims.x * (c.y + dims.y * c.z))).xy;
     for (int i = int(range.x); i < int(range.y); ++i) {
-      vec4 second = SDF_FETCH(grid_entries, SDF_ENTRY_TEXELS * i + 1);
-      uint k = floatBitsToUint(second.w);
+      uint k = SDF_FETCH(crossing_triangles, i).x;
+      int v = 3 * int(k);
       float tk;
       vec2 uvk;
       COUNT(COUNTER_TRIANGLE_TESTS, 1u);
-      if (!ray_triangle(o, d, entry_vertex(i, 0), second.xyz, entry_vertex(i, 2), tk, uvk)) continue;
+      if (!ray_triangle(o, d, SDF_FETCH(tri_vertices, v).xyz, SDF_FETCH(tri_vertices, v + 1).xyz,
+                        SDF_FETCH(tri_vertices, v + 2).xyz, tk, uvk))
+        continue;
       // Ties go to the lower triangle index, as in sdf-cpu.
       if (tk >= t_lo && tk <= min(t_exit, t_hi) && (tk < t_hit || (tk == t_hit && k < triangle))) {
         t_hit = tk;

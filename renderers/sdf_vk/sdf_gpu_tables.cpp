@@ -49,6 +49,8 @@ SdfGpuTables::SdfGpuTables(const VulkanContext& context, const SdfGpuArrays& arr
   grid_entries_ = table(arrays.grid_entries, VK_FORMAT_R32G32B32A32_SFLOAT, "mesh grid triangle lists");
   vertices_ = table(arrays.vertices, VK_FORMAT_R32G32B32A32_SFLOAT, "triangle vertices");
   normals_ = table(arrays.normals, VK_FORMAT_R32G32B32A32_SFLOAT, "triangle normals");
+  crossing_cells_ = table(arrays.crossing_cells, VK_FORMAT_R32G32_UINT, "exact-hit cells");
+  crossing_triangles_ = table(arrays.crossing_triangles, VK_FORMAT_R32_UINT, "exact-hit triangle lists");
 }
 
 std::vector<KernelBinding> SdfGpuTables::bindings() const {
@@ -62,7 +64,9 @@ std::vector<KernelBinding> SdfGpuTables::bindings() const {
           {14, table, &grid_cells_},
           {15, table, &grid_entries_},
           {16, table, &vertices_},
-          {17, table, &normals_}};
+          {17, table, &normals_},
+          {23, table, &crossing_cells_},
+          {24, table, &crossing_triangles_}};
 }
 
 }  // namespace sdfbench

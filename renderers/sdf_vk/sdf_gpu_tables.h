@@ -1,7 +1,8 @@
 #pragma once
 // The SDF structure's tables (SdfGpuArrays) uploaded for a kernel: texel buffers, or storage
-// buffers with --storage-tables, bound at 8-17 as sdf_scene_distance.glsl declares them. Shared
-// by sdf-hash/sdf-octree and sdf-bricks, whose kernels read the same scene hash and lists.
+// buffers with --storage-tables, bound at 8-17 as sdf_scene_distance.glsl declares them (23-24:
+// the exact hits' lists, sdf_exact_crossing.glsl). Shared by sdf-hash/sdf-octree, sdf-bricks and
+// sdf-global, whose kernels read the same mesh grids and records.
 #include <vector>
 
 #include "renderers/sdf_vk/sdf_gpu_arrays.h"
@@ -26,7 +27,7 @@ class SdfGpuTables {
  private:
   bool storage_ = false;
   GpuBuffer params_, hash_cells_, octree_nodes_, instance_lists_, instance_records_, mesh_records_, grid_cells_,
-      grid_entries_, vertices_, normals_;
+      grid_entries_, vertices_, normals_, crossing_cells_, crossing_triangles_;
 };
 
 }  // namespace sdfbench

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <stdexcept>
 #include <random>
 #include <string>
 #include <vector>
@@ -34,6 +35,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       const sdf::OctreeNode& leaf = c.hash.nodes[node];
       for (uint32_t k = 0; k < leaf.list_count; ++k) (void)c.hash.instance_lists.at(leaf.list_begin + k);
     }
+    // The global field as sdf-global walks it: a brick's atlas samples and its instance list.
+    if (c.global_params) {
+      const sdf::GlobalField& g = c.global_field;
+      const size_t brick_bytes = sdf::kBrickSamples * sdf::bytes_per_sample(g.field.format);
+      for (uint32_t slot : g.field.indirection) {
+        if (slot == sdf::kEmptyBrick) continue;
+        (void)g.field.atlas.at((size_t{slot} + 1) * brick_bytes - 1);
+        for (uint32_t k = g.list_begin.at(slot); k < g.list_begin.at(slot + 1); ++k)
+          if (g.list_instances.at(k) >= c.instance_count) throw std::logic_error("a listed instance is out of range");
+      }
+      if (g.field.coarse.size() != size_t{g.field.bricks.x + 1} * (g.field.bricks.y + 1) * (g.field.bricks.z + 1))
+        throw std::logic_error("the global coarse level does not match its bricks");
+    }
     ++accepted;
   } catch (const Error&) {
     ++refused;
@@ -46,7 +60,8 @@ namespace {
 
 // A small valid cache built by hand: one mesh (2 triangles, 4 vertices, 2x2x2 cells) and a
 // 2x1x1 hash whose first cell holds an octree of depth 1, and a brick field of 2x1x1 bricks
-// (one stored, f16) so that the brick sections are fuzzed too.
+// (one stored, f16) and a global field of 1x1x2 bricks (one stored, f32, listing two instances) so
+// that the brick and global sections are fuzzed too.
 std::vector<std::byte> seed_cache() {
   sdf::SdfCacheContents c;
   c.scene_hash = 0x1234;
@@ -83,6 +98,23 @@ std::vector<std::byte> seed_cache() {
   f.atlas.assign(sdf::kBrickSamples * 2, 0);  // half 0.0
   f.coarse.assign(12, 0.5f);
   c.brick_fields = {f};
+  sdf::GlobalFieldParams gp;
+  gp.voxel = 0.5f;
+  gp.band = 2;
+  gp.format = sdf::SdfFormat::f32;
+  c.global_params = gp;
+  sdf::GlobalField& global = c.global_field;
+  global.voxel_request = 0.5f;
+  global.field.origin = glm::vec3(-2.0f);
+  global.field.voxel = 0.5f;
+  global.field.bricks = glm::uvec3(1, 1, 2);
+  global.field.format = sdf::SdfFormat::f32;
+  global.field.indirection = {sdf::kEmptyBrick, 0};
+  global.field.atlas.assign(sdf::kBrickSamples * 4, 0);  // 0.0f
+  global.field.coarse.assign(12, 0.25f);
+  global.list_begin = {0, 2};
+  global.list_instances = {0, 2};
+  global.build_ms = 1.0;
   return sdf::encode_sdf_cache(c);
 }
 

@@ -1,0 +1,73 @@
+#pragma once
+// One sampled distance field over the whole scene (issue 29), as Unreal Engine 5's global
+// distance field composites its instances: the brick format of brick_field.h (8^3 samples per
+// brick, shared borders, an indirection table, a band, a coarse level at the brick corners), laid
+// over the scene's box in world units, its values the distance to the nearest instance. A step
+// costs one fetch however many instances the scene has.
+//
+// Values: min over instances of the unsigned distance (each from the instance's exact mesh grid,
+// a lower bound where a point lies outside that grid's box), negative inside any instance. So
+// |v| <= u(p), u the distance to the union of the surfaces, and brick_field.h's bound holds:
+// |trilinear| - delta - quantization <= u(p). Per stored brick, a list of the instances whose
+// surface may come within kListSlackVoxels of the brick: the candidates of an exact hit there.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "renderers/sdf/brick_field.h"
+#include "scenes/scene.h"
+
+namespace sdfbench::sdf {
+
+struct SceneSdf;
+
+struct GlobalFieldParams {
+  float voxel = 0.0f;  // --global-voxel in world units; 0: auto_global_voxel()
+  uint32_t band = 4;   // --brick-band
+  SdfFormat format = SdfFormat::f32;  // --sdf-format
+  // --max-structure-mb: the build stops with an Error when the field would pass this.
+  uint64_t max_bytes = kDefaultMaxStructureBytes;
+};
+inline bool same(const GlobalFieldParams& a, const GlobalFieldParams& b) {
+  return a.voxel == b.voxel && a.band == b.band && a.format == b.format;
+}
+std::string describe(const GlobalFieldParams& params);  // "--global-voxel 0.25 --brick-band 4 --sdf-format f32"
+void validate(const GlobalFieldParams& params);          // throws Error naming the flag
+
+// --global-voxel auto: the median instance's largest world extent / kAutoVoxelsPerInstance (so a
+// typical object spans that many voxels, whatever the scene's units), but never more than
+// kMaxGlobalCells cells along the scene's largest extent. Chosen by measurement (README, "sdf-global").
+inline constexpr float kAutoVoxelsPerInstance = 24.0f;
+inline constexpr uint32_t kMaxGlobalCells = 2048;
+float auto_global_voxel(const Scene& scene);
+
+// Instances a stored brick lists: those whose surface may lie within this many voxels of it (the
+// exact window test reaches BRICK_BEHIND_VOXELS behind its point and a rounding slack past the
+// brick's far face), plus a relative rounding slack of the coordinates.
+inline constexpr float kListSlackVoxels = 0.25f;
+
+struct GlobalField {
+  BrickField field;                // world space; one field, as a mesh's
+  float voxel_request = 0.0f;      // --global-voxel as given (0: auto)
+  std::vector<uint32_t> list_begin;      // per stored brick + 1: its instances are list_instances[begin[s] .. begin[s+1])
+  std::vector<uint32_t> list_instances;
+  double build_ms = 0.0;
+
+  size_t bytes() const { return field.bytes() + (list_begin.size() + list_instances.size()) * sizeof(uint32_t); }
+};
+
+// Built in parallel (TBB) from `sdf`'s mesh grids (built with `mesh_params`) and its
+// world_to_object; where the band reaches beyond a mesh grid's box (which gives only a bound
+// there), the samples come from a grid of the same cells with a margin that covers the band (at
+// most kMaxSamplingMarginCells more), built for the sampling and dropped. Progress on stderr for
+// long builds. Throws Error for a lattice of more than kMaxHashCells bricks or a field over
+// params.max_bytes (naming the flags to change), and for a scene without instances.
+inline constexpr float kMaxSamplingMarginCells = 16.0f;
+GlobalField build_global_field(const Scene& scene, const SceneSdf& sdf, const MeshGridParams& mesh_params,
+                               const GlobalFieldParams& params);
+
+// The signed composite distance at world point p over all instances (the build's value before
+// clamping): for tests and the coarse level.
+float global_distance(const Scene& scene, const SceneSdf& sdf, const glm::vec3& p);
+
+}  // namespace sdfbench::sdf

@@ -1,0 +1,46 @@
+#pragma once
+#include <optional>
+#include <string>
+
+#include "renderers/renderer.h"
+#include "renderers/sdf/global_field.h"
+#include "renderers/sdf_vk/brick_field_tables.h"
+#include "renderers/sdf_vk/sdf_gpu_tables.h"
+#include "renderers/vulkan/vulkan_context.h"
+#include "renderers/vulkan/vulkan_frame_runner.h"
+
+namespace sdfbench {
+
+// sdf-global (issue 29): one sampled field over the whole scene (renderers/sdf/global_field.h),
+// sphere-traced in sdf_global.comp with one field sample per step whatever the number of
+// instances; near a surface the instances its brick lists are intersected exactly (the mesh
+// grids' triangle lists), or --hit field takes the field's own crossing. Its parameters
+// (backend_params.h): --global-voxel, --sdf-format, --brick-band, --brick-fetch.
+class SdfGlobalRenderer : public Renderer {
+ public:
+  explicit SdfGlobalRenderer(const BackendOptions& options);
+  std::string name() const override { return "sdf-global"; }
+  std::string device_name() const override { return context_.info().name; }
+  std::string driver_name() const override { return context_.info().driver + " " + context_.info().driver_info; }
+  void prepare(const Scene& scene) override;
+  FrameResult render(const FrameRequest& request) override { return runner_.run(request); }
+  uint32_t validation_messages() const override { return context_.validation_messages(); }
+  std::optional<StructureStats> structure_stats() const override { return stats_; }
+
+ private:
+  BackendOptions options_;
+  sdf::GlobalFieldParams field_params_;
+  std::optional<StructureStats> stats_;  // mesh grids + the global field and its lists
+  VulkanContext context_;
+  bool sampler_ = false;  // --brick-fetch, resolved
+  SdfGpuTables tables_;
+  BrickFieldTables field_tables_;
+  GpuBuffer brick_lists_;
+  VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
+};
+
+// The global field parameters of `params` (--global-voxel, --sdf-format, --brick-band); throws
+// Error for values outside their ranges.
+sdf::GlobalFieldParams global_field_params(const BackendParams& params, uint64_t max_bytes);
+
+}  // namespace sdfbench
