@@ -72,12 +72,14 @@ struct BrickField {
   float quantization = 0.0f;  // the most a stored value differs from the clamped exact one
   std::vector<uint32_t> indirection;  // per brick (x fastest): its index in the atlas, or kEmptyBrick
   std::vector<uint8_t> atlas;         // kBrickSamples per stored brick, x fastest, in `format`
-  std::vector<float> coarse;          // exact signed distance at each brick corner, (bricks + 1)^3, x fastest
+  std::vector<float> coarse;          // exact signed distance at each brick corner, (bricks + 1)^3, x fastest;
+                                      // with coarse_at_centres one per brick: a lower bound at its centre
+  bool coarse_at_centres = false;     // sdf-global's field (global_field.h): an empty brick's bound is one fetch
   double build_ms = 0;
 
   size_t brick_count() const { return indirection.size(); }
   size_t stored_bricks() const { return atlas.size() / (kBrickSamples * bytes_per_sample(format)); }
-  glm::uvec3 coarse_dims() const { return bricks + 1u; }
+  glm::uvec3 coarse_dims() const { return coarse_at_centres ? bricks : bricks + 1u; }
   glm::vec3 box_max() const { return origin + voxel * glm::vec3(bricks * kBrickCells); }
   size_t bytes() const;  // indirection, atlas and coarse level
 };

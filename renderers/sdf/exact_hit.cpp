@@ -6,8 +6,8 @@
 
 namespace sdfbench::sdf {
 
-bool exact_crossing(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& o, const glm::vec3& d, float t_lo,
-                    float t_hi, Crossing& crossing, uint32_t& tests) {
+bool exact_crossing(const MeshDistanceGrid& grid, const MeshCrossingLists& lists, const Mesh& mesh, const glm::vec3& o,
+                    const glm::vec3& d, float t_lo, float t_hi, Crossing& crossing, uint32_t& tests) {
   constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
   crossing.t = t_hi;
   uint32_t found = kNone;
@@ -23,8 +23,8 @@ bool exact_crossing(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::v
     shading::clip_to_box(o, d, cell_lo, cell_lo + grid.cell_size, t_enter, t_exit);
     t_exit += 1e-5f * std::abs(t_exit);  // rounding of the cell walls
     const size_t cell = c.x + static_cast<size_t>(grid.dims.x) * (c.y + static_cast<size_t>(grid.dims.y) * c.z);
-    for (uint32_t i = grid.cell_begin[cell]; i < grid.cell_begin[cell + 1]; ++i) {
-      const uint32_t k = grid.cell_triangles[i];
+    for (uint32_t i = lists.cell_begin[cell]; i < lists.cell_begin[cell + 1]; ++i) {
+      const uint32_t k = lists.triangles[i];
       const glm::uvec3 tri = mesh.triangles[k];
       float tk = 0.0f;
       glm::vec2 uv(0.0f);

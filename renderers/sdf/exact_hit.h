@@ -2,11 +2,12 @@
 // --hit exact (SphereTraceParams::hit): once sphere tracing has converged near an instance, the
 // ray's crossing with the triangles its mesh grid lists there (ray_triangle.glsl, as tri-aabb),
 // so t, barycentrics, normal and uv are where the ray meets the surface, as Embree's are. The
-// same search as exact_crossing() in renderers/sdf_vk/sdf_trace.comp.
+// same search as exact_crossing() in renderers/sdf_vk/sdf_exact_crossing.glsl.
 #include <cstdint>
 
 #include <glm/glm.hpp>
 
+#include "renderers/sdf/crossing_lists.h"
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "renderers/shading/gpu_types.h"
 
@@ -20,11 +21,11 @@ struct Crossing {
 
 // The earliest crossing of the ray (o + t d, in the mesh's frame) with a triangle of the mesh for
 // t in [t_lo, t_hi], walking the grid cells that segment crosses and testing the triangles each
-// lists: every crossing inside a cell is found there, since the cell lists each triangle that is
-// the nearest one to a point of the cell. False when there is none. Adds the ray-triangle tests
+// crossing list holds: every crossing inside a cell is found there (crossing_lists.h). False
+// when there is none. Adds the ray-triangle tests
 // to `tests`. At most kExactMaxCells cells (SDF_EXACT_MAX_CELLS in the kernels).
 constexpr uint32_t kExactMaxCells = 512;
-bool exact_crossing(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& o, const glm::vec3& d, float t_lo,
-                    float t_hi, Crossing& crossing, uint32_t& tests);
+bool exact_crossing(const MeshDistanceGrid& grid, const MeshCrossingLists& lists, const Mesh& mesh, const glm::vec3& o,
+                    const glm::vec3& d, float t_lo, float t_hi, Crossing& crossing, uint32_t& tests);
 
 }  // namespace sdfbench::sdf

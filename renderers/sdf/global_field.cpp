@@ -131,11 +131,22 @@ float global_distance(const Scene& scene, const SceneSdf& sdf, const glm::vec3& 
 GlobalField build_global_field(const Scene& scene, const SceneSdf& scene_sdf, const MeshGridParams& mesh_params,
                                const GlobalFieldParams& params) {
   validate(params);
-  if (scene.instances.empty()) throw Error("sdf-global: the scene has no mesh instances to build a field over");
   const auto start = std::chrono::steady_clock::now();
   GlobalField global;
   global.voxel_request = params.voxel;
   BrickField& field = global.field;
+  if (scene.instances.empty()) {  // (implicit objects only) one empty brick, far from everything
+    field.voxel = 1.0f;
+    field.bricks = glm::uvec3(1u);
+    field.format = params.format;
+    field.band = static_cast<float>(params.band);
+    field.quantization = brick_quantization(params.format, field.band);
+    field.indirection = {kEmptyBrick};
+    field.coarse_at_centres = true;
+    field.coarse = {1e30f};
+    global.list_begin = {0};
+    return global;
+  }
   const uint32_t instance_count = static_cast<uint32_t>(scene.instances.size());
   std::vector<Aabb> boxes;
   for (const Instance& instance : scene.instances) boxes.push_back(scene.world_bounds(instance));
@@ -260,26 +271,24 @@ GlobalField build_global_field(const Scene& scene, const SceneSdf& scene_sdf, co
                 "--sdf-format f16/u8");
   field.atlas.resize(atlas_bytes);
 
-  // Coarse level, at each brick corner: a lower bound on the distance to the nearest surface (all
-  // that an empty brick's step needs), exact over the candidates of the brick at the corner and
-  // the distance to the box of every other instance. Unclamped: far from everything it is the step.
-  const glm::uvec3 corners = field.coarse_dims();
-  field.coarse.resize(size_t(corners.x) * corners.y * corners.z);
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, corners.z), [&](const tbb::blocked_range<uint32_t>& r) {
+  // Coarse level, one value per brick: a lower bound on the distance from its centre to the
+  // nearest surface (exact over the brick's candidates, the box distance of every other instance),
+  // so that an empty brick's step costs one fetch (brick_sample.glsl). Unclamped: far from
+  // everything it is the step.
+  field.coarse_at_centres = true;
+  field.coarse.resize(brick_count);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, brick_count), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<uint8_t> is_candidate(instance_count, 0);
-    for (uint32_t z = r.begin(); z != r.end(); ++z)
-      for (uint32_t y = 0; y < corners.y; ++y)
-        for (uint32_t x = 0; x < corners.x; ++x) {
-          const glm::uvec3 corner(x, y, z);
-          const glm::vec3 p = field.origin + brick_size * glm::vec3(corner);
-          const auto cands = candidates_of(index_of(glm::min(corner, field.bricks - 1u), field.bricks));
-          Composite c = composite(scene, sampling, boxes, cands, p);
-          for (uint32_t i : cands) is_candidate[i] = 1;
-          for (uint32_t i = 0; i < instance_count; ++i)
-            if (!is_candidate[i]) c.value = std::min(c.value, box_distance(boxes[i], p));
-          for (uint32_t i : cands) is_candidate[i] = 0;
-          field.coarse[index_of(corner, corners)] = c.value;
-        }
+    for (size_t b = r.begin(); b != r.end(); ++b) {
+      const glm::vec3 centre = field.origin + brick_size * (glm::vec3(coords_of(b, field.bricks)) + 0.5f);
+      const auto cands = candidates_of(b);
+      Composite c = composite(scene, sampling, boxes, cands, centre);
+      for (uint32_t i : cands) is_candidate[i] = 1;
+      for (uint32_t i = 0; i < instance_count; ++i)
+        if (!is_candidate[i]) c.value = std::min(c.value, box_distance(boxes[i], centre));
+      for (uint32_t i : cands) is_candidate[i] = 0;
+      field.coarse[b] = c.value;
+    }
   });
 
   ProgressMeter progress("global field (" + std::to_string(next_slot) + " bricks)", brick_count, "bricks");

@@ -61,7 +61,7 @@ struct GlobalField {
 // there), the samples come from a grid of the same cells with a margin that covers the band (at
 // most kMaxSamplingMarginCells more), built for the sampling and dropped. Progress on stderr for
 // long builds. Throws Error for a lattice of more than kMaxHashCells bricks or a field over
-// params.max_bytes (naming the flags to change), and for a scene without instances.
+// params.max_bytes (naming the flags to change). A scene without mesh instances gets one empty brick.
 inline constexpr float kMaxSamplingMarginCells = 16.0f;
 GlobalField build_global_field(const Scene& scene, const SceneSdf& sdf, const MeshGridParams& mesh_params,
                                const GlobalFieldParams& params);

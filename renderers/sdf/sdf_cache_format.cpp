@@ -399,7 +399,8 @@ GlobalField read_global(const Reader& r, const GlobalFieldParams& params, uint32
             what + ": atlas of " + std::to_string(f.atlas.size()) + " bytes for " + std::to_string(h.stored) + " bricks");
   check_atlas_values(r, f, what);
   f.coarse = r.section<float>(kGlobalCoarse, 0);
-  r.require(f.coarse.size() == cell_product(h.bricks + 1u), what + ": coarse level count differs from its brick corners");
+  f.coarse_at_centres = true;
+  r.require(f.coarse.size() == cell_product(h.bricks), what + ": coarse level count differs from its bricks");
   r.require(std::all_of(f.coarse.begin(), f.coarse.end(), [](float v) { return std::isfinite(v) && v >= 0.0f; }),
             what + ": a coarse value is not finite or negative (it is a distance bound)");
   g.list_begin = r.section<uint32_t>(kGlobalListBegin, 0);

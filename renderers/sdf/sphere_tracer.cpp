@@ -124,8 +124,8 @@ bool SphereTracer::instance_crossing(const shading::Ray& ray, uint32_t instance_
   const glm::mat4& to_object = sdf_.world_to_object[instance_id];
   const glm::vec3 o(to_object * glm::vec4(ray.origin, 1.0f)), dir(glm::mat3(to_object) * ray.dir);
   uint32_t tests = 0;
-  const bool crossed = exact_crossing(sdf_.mesh_grids[instance.mesh], scene_.meshes[instance.mesh], o, dir, t_lo,
-                                      t_hi, crossing, tests);
+  const bool crossed = exact_crossing(sdf_.mesh_grids[instance.mesh], culling_.crossings[instance.mesh],
+                                      scene_.meshes[instance.mesh], o, dir, t_lo, t_hi, crossing, tests);
   if (counts) (*counts)[COUNTER_TRIANGLE_TESTS] += tests;
   return crossed;
 }

@@ -26,7 +26,10 @@ Aabb enclosing_box(const Aabb& bounds, const glm::mat4& object_to_world) {
 
 TraceCulling make_trace_culling(const Scene& scene, const SceneSdf& sdf) {
   TraceCulling culling;
-  for (size_t m = 0; m < scene.meshes.size(); ++m) culling.meshes.push_back(make_trace_lists(sdf.mesh_grids[m], scene.meshes[m]));
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    culling.meshes.push_back(make_trace_lists(sdf.mesh_grids[m], scene.meshes[m]));
+    culling.crossings.push_back(make_crossing_lists(sdf.mesh_grids[m], scene.meshes[m]));
+  }
   for (const Instance& instance : scene.instances)
     culling.instance_boxes.push_back(enclosing_box(scene.meshes[instance.mesh].bounds, instance.transform.object_to_world()));
   return culling;

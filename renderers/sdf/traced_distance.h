@@ -7,12 +7,14 @@
 // count, the same work.
 #include <vector>
 
+#include "renderers/sdf/crossing_lists.h"
 #include "renderers/sdf/scene_hash.h"
 
 namespace sdfbench::sdf {
 
 struct TraceCulling {
   std::vector<MeshTraceLists> meshes;
+  std::vector<MeshCrossingLists> crossings;  // per mesh: the exact hits' lists
   std::vector<Aabb> instance_boxes;  // world box around each instance's mesh bounds, padded for rounding
 };
 TraceCulling make_trace_culling(const Scene& scene, const SceneSdf& sdf);

@@ -36,6 +36,7 @@ BrickGpuArrays flatten_brick_fields(const std::vector<sdf::BrickField>& fields) 
     out.records.emplace_back(bits(field.origin.x), bits(field.origin.y), bits(field.origin.z), bits(field.voxel));
     out.records.emplace_back(field.bricks, first_brick);
     out.records.emplace_back(first_coarse, bits(field.band), bits(field.quantization), bits(margin));
+    out.records.emplace_back(field.coarse_at_centres ? 1u : 0u, 0u, 0u, 0u);
     for (uint32_t slot : field.indirection) out.slots.push_back(slot == sdf::kEmptyBrick ? slot : first_slot + slot);
     out.atlas.insert(out.atlas.end(), field.atlas.begin(), field.atlas.end());
     out.coarse.insert(out.coarse.end(), field.coarse.begin(), field.coarse.end());

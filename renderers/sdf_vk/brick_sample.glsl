@@ -17,8 +17,8 @@
 
 // Field record, BRICK_FIELD_TEXELS RGBA32UI texels per mesh (floats as bits): (lattice origin xyz,
 // voxel h); (bricks per axis xyz, first indirection entry); (first coarse sample, band x h,
-// quantization bound, margin: mesh bounds to lattice box).
-#define BRICK_FIELD_TEXELS 3
+// quantization bound, margin: mesh bounds to lattice box); (coarse level at brick centres, 0, 0, 0).
+#define BRICK_FIELD_TEXELS 4
 #define BRICK_EMPTY 0xffffffffu
 #define BRICK_CELLS 7u
 #define BRICK_SIDE 8
@@ -32,6 +32,7 @@ struct BrickFieldInfo {
   float band;
   float quantization;
   float margin;
+  bool coarse_at_centres;  // sdf-global: one lower bound per brick, at its centre (else brick corners)
 };
 
 struct FieldSample {
@@ -44,7 +45,7 @@ struct FieldSample {
 
 SHARED_FN BrickFieldInfo brick_field_info(uint mesh) {
   int base = int(mesh) * BRICK_FIELD_TEXELS;
-  uvec4 r0 = brick_record(base), r1 = brick_record(base + 1), r2 = brick_record(base + 2);
+  uvec4 r0 = brick_record(base), r1 = brick_record(base + 1), r2 = brick_record(base + 2), r3 = brick_record(base + 3);
   BrickFieldInfo f;
   f.origin = uintBitsToFloat(uvec3(r0.x, r0.y, r0.z));
   f.voxel = uintBitsToFloat(r0.w);
@@ -54,6 +55,7 @@ SHARED_FN BrickFieldInfo brick_field_info(uint mesh) {
   f.band = uintBitsToFloat(r2.y);
   f.quantization = uintBitsToFloat(r2.z);
   f.margin = uintBitsToFloat(r2.w);
+  f.coarse_at_centres = r3.x != 0u;
   return f;
 }
 
@@ -94,6 +96,15 @@ SHARED_FN FieldSample sample_field(BrickFieldInfo f, vec3 p) {
   vec3 fr = clamp(g - vec3(c), vec3(0.0f), vec3(1.0f));
   uvec3 b = c / BRICK_CELLS;
   uint slot = brick_slot(int(f.first_brick + b.x + f.bricks.x * (b.y + f.bricks.y * b.z)));
+  if (slot == BRICK_EMPTY && f.coarse_at_centres) {
+    // u(p) >= u(centre) - |p - centre| (u is 1-Lipschitz), and u >= band in all of an empty brick.
+    float v = coarse_value(int(f.first_coarse + b.x + f.bricks.x * (b.y + f.bricks.y * b.z)));
+    vec3 centre = f.origin + (vec3(b) + 0.5f) * (f.voxel * float(BRICK_CELLS));
+    s.bound = max(f.band, v - length(p - centre) - 1e-6f * (v + length(p)));
+    s.value = s.bound;
+    s.empty = true;
+    return s;
+  }
   if (slot == BRICK_EMPTY) {
     uvec3 dims = f.bricks + uvec3(1u);
     vec3 gc = (p - f.origin) / (f.voxel * float(BRICK_CELLS));

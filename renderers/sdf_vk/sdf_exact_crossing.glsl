@@ -44,7 +44,7 @@ vec3 transform_direction(int row0, vec3 v) {
 // --hit exact: the earliest crossing of the ray with a triangle of `instance` for t in
 // [t_lo, t_hi], walking the mesh-grid cells that segment crosses and testing the triangles each
 // lists: every crossing inside a cell is found there, since the cell's crossing list holds every
-// triangle whose box meets the cell (sdf_gpu_arrays.cpp, add_crossing_lists). False when
+// triangle whose box meets the cell (renderers/sdf/crossing_lists.h). False when
 // there is none: the ray passed that surface within epsilon (a silhouette). As
 // exact_crossing() in renderers/sdf/exact_hit.cpp.
 // The ray is given in the mesh's frame (o + t d, t the world ray's parameter).

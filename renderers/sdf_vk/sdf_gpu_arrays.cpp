@@ -108,40 +108,6 @@ void flatten_hash(const sdf::SceneHash& hash, const std::vector<Aabb>* instance_
   }
 }
 
-// Per grid cell, the triangles whose bounding box (grown by a rounding slack) meets the cell: every
-// point of a triangle inside a cell is in such a box, so a crossing found in a cell is found there.
-void add_crossing_lists(const Mesh& mesh, const sdf::MeshDistanceGrid& grid, uint32_t first_triangle, SdfGpuArrays& out) {
-  const size_t cells = grid.cell_count();
-  const float slack = 1e-3f * grid.cell_size;
-  auto cell_range = [&](const glm::uvec3& t, glm::uvec3& lo, glm::uvec3& hi) {
-    const glm::vec3 a = glm::min(glm::min(mesh.positions[t[0]], mesh.positions[t[1]]), mesh.positions[t[2]]) - slack;
-    const glm::vec3 b = glm::max(glm::max(mesh.positions[t[0]], mesh.positions[t[1]]), mesh.positions[t[2]]) + slack;
-    const glm::vec3 top(grid.dims - 1u);
-    lo = glm::uvec3(glm::clamp(glm::floor((a - grid.origin) / grid.cell_size), glm::vec3(0.0f), top));
-    hi = glm::uvec3(glm::clamp(glm::floor((b - grid.origin) / grid.cell_size), glm::vec3(0.0f), top));
-  };
-  std::vector<uint64_t> begin(cells + 1, 0);
-  auto for_each_cell = [&](auto&& visit) {
-    for (uint32_t k = 0; k < mesh.triangles.size(); ++k) {
-      glm::uvec3 lo, hi;
-      cell_range(mesh.triangles[k], lo, hi);
-      for (uint32_t z = lo.z; z <= hi.z; ++z)
-        for (uint32_t y = lo.y; y <= hi.y; ++y)
-          for (uint32_t x = lo.x; x <= hi.x; ++x) visit(x + size_t(grid.dims.x) * (y + size_t(grid.dims.y) * z), k);
-    }
-  };
-  for_each_cell([&](size_t c, uint32_t) { ++begin[c + 1]; });
-  begin[0] = out.crossing_triangles.size();
-  for (size_t c = 0; c < cells; ++c) begin[c + 1] += begin[c];
-  if (begin[cells] >= std::numeric_limits<uint32_t>::max())
-    throw Error("the mesh grids' exact-hit lists have " + std::to_string(begin[cells]) +
-                " entries, more than the kernels' 32-bit indices; use a larger --mesh-cell or fewer --cells-per-extent");
-  out.crossing_triangles.resize(begin[cells]);
-  std::vector<uint64_t> next(begin.begin(), begin.end() - 1);
-  for_each_cell([&](size_t c, uint32_t k) { out.crossing_triangles[next[c]++] = first_triangle + k; });
-  for (size_t c = 0; c < cells; ++c) out.crossing_cells.emplace_back(uint32_t(begin[c]), uint32_t(begin[c + 1]));
-}
-
 }  // namespace
 
 SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const sdf::SphereTraceParams& tracing,
@@ -178,7 +144,16 @@ SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const
         out.grid_cells.emplace_back(list_base + grid.cell_begin[c], list_base + grid.cell_begin[c + 1]);
       }
     }
-    add_crossing_lists(mesh, grid, first_triangle, out);
+    // The exact hits' lists (crossing_lists.h), their indices made global.
+    const sdf::MeshCrossingLists& crossings = culling.crossings[m];
+    const uint64_t crossing_base = out.crossing_triangles.size();
+    if (crossing_base + crossings.triangles.size() >= std::numeric_limits<uint32_t>::max())
+      throw Error("the mesh grids' exact-hit lists have too many entries for the kernels' 32-bit indices; use a larger "
+                  "--mesh-cell or fewer --cells-per-extent");
+    for (size_t c = 0; c < grid.cell_count(); ++c)
+      out.crossing_cells.emplace_back(uint32_t(crossing_base + crossings.cell_begin[c]),
+                                      uint32_t(crossing_base + crossings.cell_begin[c + 1]));
+    for (uint32_t k : crossings.triangles) out.crossing_triangles.push_back(first_triangle + k);
     const sdf::MeshTraceLists& lists = culling.meshes[m];
     for (size_t i = 0; i < lists.triangles.size(); ++i) {
       const glm::uvec3& t = mesh.triangles[lists.triangles[i]];

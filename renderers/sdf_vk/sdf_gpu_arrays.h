@@ -24,10 +24,8 @@ struct SdfGpuArrays {
   std::vector<glm::uvec4> instance_records, mesh_records;
   std::vector<glm::uvec2> grid_cells;    // (begin, end) list entries
   std::vector<glm::vec4> grid_entries;   // SDF_ENTRY_TEXELS per list entry, each cell's nearest first
-  // The exact hits' lists (sdf_exact_crossing.glsl): per grid cell (indexed as grid_cells) the
-  // (begin, end) of its entries, each a global triangle whose box meets the cell's. A distance
-  // list also holds the triangles nearest to the cell's points from afar; a ray's crossing inside
-  // a cell needs only those passing through it (thesis:bunny:1000: 93 -> 12 tests per ray).
+  // The exact hits' lists (renderers/sdf/crossing_lists.h): per grid cell (indexed as grid_cells)
+  // the (begin, end) of its entries in crossing_triangles, each a global triangle index.
   std::vector<glm::uvec2> crossing_cells;
   std::vector<uint32_t> crossing_triangles;
   std::vector<glm::vec4> vertices, normals;  // 3 per global triangle

@@ -45,7 +45,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         for (uint32_t k = g.list_begin.at(slot); k < g.list_begin.at(slot + 1); ++k)
           if (g.list_instances.at(k) >= c.instance_count) throw std::logic_error("a listed instance is out of range");
       }
-      if (g.field.coarse.size() != size_t{g.field.bricks.x + 1} * (g.field.bricks.y + 1) * (g.field.bricks.z + 1))
+      if (!g.field.coarse_at_centres || g.field.coarse.size() != size_t{g.field.bricks.x} * g.field.bricks.y * g.field.bricks.z)
         throw std::logic_error("the global coarse level does not match its bricks");
     }
     ++accepted;
@@ -111,7 +111,8 @@ std::vector<std::byte> seed_cache() {
   global.field.format = sdf::SdfFormat::f32;
   global.field.indirection = {sdf::kEmptyBrick, 0};
   global.field.atlas.assign(sdf::kBrickSamples * 4, 0);  // 0.0f
-  global.field.coarse.assign(12, 0.25f);
+  global.field.coarse_at_centres = true;
+  global.field.coarse.assign(2, 0.25f);
   global.list_begin = {0, 2};
   global.list_instances = {0, 2};
   global.build_ms = 1.0;
