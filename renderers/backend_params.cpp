@@ -27,7 +27,7 @@ const std::vector<ParamSpec>& param_specs() {
   static const std::vector<ParamSpec> specs = {
       {"voxels", bricks, "128", "brick field lattice cells along each mesh's largest extent", {}, 4, 1024},
       {"global_voxel", global, "auto",
-       "the global field's voxel in world units; auto: the median instance's largest extent / 24 (README, \"sdf-global\")",
+       "the global field's voxel in world units; auto: the median instance's largest extent / 10 (README, \"sdf-global\")",
        {"auto"}, 0, 0, true},
       {"sdf_format", both, "f32", "stored field values: f32, f16 or u8 (a band-relative UNORM)", {"f32", "f16", "u8"}},
       {"brick_band", both, "4", "bricks within this many voxels of the surface are stored", {}, 1, 16},
