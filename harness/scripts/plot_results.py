@@ -11,7 +11,7 @@ Writes, for whatever the CSVs contain:
   brick_sweep.png             sdf-bricks sweeps over --voxels: Mrays/s and the depth error in voxels
                               vs voxels, one line per format, trace mode and hit mode
   global_sweep.png            sdf-global sweeps over --global-voxel: Mrays/s, structure MB and build
-                              seconds vs the voxel size, one line per format and hit mode
+                              seconds vs the voxel size, one line per format, band and hit mode
   structure_cost_<mode>.png   build seconds and structure MB vs object count, one panel per mesh,
                               one line per backend that builds a structure
   cost_vs_triangles_<mode>_<n>objects.png
@@ -186,16 +186,16 @@ def global_sweep(rows, out_dir):
         return
     lines = defaultdict(list)
     for r in sweep:
-        lines[(r["sdf_format"], r["hit"])].append(r)
+        lines[(r["sdf_format"], int(number(r["brick_band"])), r["hit"])].append(r)
     metrics = (("mrays_per_s", "Mrays/s", 1.0), ("structure_bytes", "structure MB", 1e-6), ("build_ms", "build s", 1e-3))
     fig, axes = plt.subplots(1, 3, figsize=(13, 3.8))
-    for k, ((fmt, hit), group) in enumerate(sorted(lines.items())):
+    for k, ((fmt, band, hit), group) in enumerate(sorted(lines.items())):
         color = plt.cm.tab10(k % 10)
         for ax, (metric, _, scale) in zip(axes, metrics):
             points = sorted((number(r["global_voxel"]), number(r[metric]) * scale, r) for r in group
                             if number(r[metric]) is not None)
             line, = ax.plot([p[0] for p in points], [p[1] for p in points], "-" if hit == "exact" else "--", marker="o",
-                            color=color, label=f"{fmt}, {hit} hits")
+                            color=color, label=f"{fmt}, band {band}, {hit} hits")
             for x, y, r in points:
                 if not r["agreement"].startswith(("ok", "reference")):
                     ax.plot([x], [y], "o", mfc="white", mec=line.get_color())
@@ -237,6 +237,7 @@ def structure_cost(rows, out_dir):
                 ax.set_xlabel("objects")
                 ax.grid(True, which="both", alpha=0.3)
                 ax.legend(fontsize=7)
+        fig.subplots_adjust(hspace=0.4)
         fig.suptitle(f"structure build time and memory vs object count ({mode}; device: {mode_rows[0]['device']})",
                      fontsize=10)
         save(fig, os.path.join(out_dir, f"structure_cost_{mode}.png"))
