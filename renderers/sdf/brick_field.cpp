@@ -16,7 +16,14 @@
 namespace sdfbench::sdf {
 namespace {
 
-void store(SdfFormat format, float band, float value, uint8_t* out) {
+size_t index_of(const glm::uvec3& c, const glm::uvec3& dims) { return c.x + size_t(dims.x) * (c.y + size_t(dims.y) * c.z); }
+glm::uvec3 coords_of(size_t i, const glm::uvec3& dims) {
+  return glm::uvec3(i % dims.x, (i / dims.x) % dims.y, i / (size_t(dims.x) * dims.y));
+}
+
+}  // namespace
+
+void store_sample(SdfFormat format, float band, float value, uint8_t* out) {
   const float v = std::clamp(value, -band, band);
   switch (format) {
     case SdfFormat::f32: std::memcpy(out, &v, 4); return;
@@ -28,13 +35,6 @@ void store(SdfFormat format, float band, float value, uint8_t* out) {
     case SdfFormat::u8: *out = static_cast<uint8_t>(std::lround((v / band + 1.0f) * 127.5f)); return;
   }
 }
-
-size_t index_of(const glm::uvec3& c, const glm::uvec3& dims) { return c.x + size_t(dims.x) * (c.y + size_t(dims.y) * c.z); }
-glm::uvec3 coords_of(size_t i, const glm::uvec3& dims) {
-  return glm::uvec3(i % dims.x, (i / dims.x) % dims.y, i / (size_t(dims.x) * dims.y));
-}
-
-}  // namespace
 
 std::string to_string(SdfFormat format) {
   switch (format) {
@@ -140,7 +140,7 @@ BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_gri
         for (uint32_t y = 0; y < kBrickSide; ++y)
           for (uint32_t x = 0; x < kBrickSide; ++x, out += sample_bytes) {
             const glm::vec3 p = field.origin + field.voxel * glm::vec3(c * kBrickCells + glm::uvec3(x, y, z));
-            store(params.format, field.band, grid_signed_distance(grid, mesh, p), out);
+            store_sample(params.format, field.band, grid_signed_distance(grid, mesh, p), out);
           }
     }
     progress.advance(r.size());

@@ -93,6 +93,9 @@ void validate(const BrickFieldParams& params);
 BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& grid, const MeshGridParams& grid_params,
                              const BrickFieldParams& params);
 
+// Writes `value`, clamped to [-band, band], as one sample in `format` (u8: a band-relative UNORM).
+void store_sample(SdfFormat format, float band, float value, uint8_t* out);
+
 // Sample `index` of an atlas in `format` as the kernels' texel fetch returns it: f32, f16 ->
 // float exactly, u8 as UNORM q / 255. Header-only, like atlas_value: the cache decoder (and its
 // fuzz target) checks values with it.

@@ -64,19 +64,6 @@ Composite composite(const Scene& scene, const SamplingGrids& sampling, const std
 
 float signed_value(const Composite& c) { return c.inside ? -c.value : c.value; }
 
-void store(SdfFormat format, float band, float value, uint8_t* out) {
-  const float v = std::clamp(value, -band, band);
-  switch (format) {
-    case SdfFormat::f32: std::memcpy(out, &v, 4); return;
-    case SdfFormat::f16: {
-      const uint16_t h = glm::packHalf1x16(v);
-      std::memcpy(out, &h, 2);
-      return;
-    }
-    case SdfFormat::u8: *out = static_cast<uint8_t>(std::lround((v / band + 1.0f) * 127.5f)); return;
-  }
-}
-
 // All of a scene's instances, as a candidate list.
 struct AllInstances {
   uint32_t n;
@@ -302,7 +289,7 @@ GlobalField build_global_field(const Scene& scene, const SceneSdf& scene_sdf, co
         for (uint32_t y = 0; y < kBrickSide; ++y)
           for (uint32_t x = 0; x < kBrickSide; ++x, out += sample_bytes) {
             const glm::vec3 p = field.origin + field.voxel * glm::vec3(c * kBrickCells + glm::uvec3(x, y, z));
-            store(params.format, field.band, signed_value(composite(scene, sampling, boxes, cands, p)), out);
+            store_sample(params.format, field.band, signed_value(composite(scene, sampling, boxes, cands, p)), out);
           }
     }
     progress.advance(r.size());

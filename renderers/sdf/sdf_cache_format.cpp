@@ -333,33 +333,46 @@ void check_atlas_values(const Reader& r, const BrickField& f, const std::string&
     r.require(std::abs(atlas_value(f, i)) <= limit, what + ": an atlas value is not finite or lies beyond the band");
 }
 
-// A mesh's brick field: every index in range, every count what its header implies, values within
-// the band (a NaN would stall no march but mislead every bound); band and quantization are
-// recomputed from the parameters, never taken from the file.
+// What a mesh's brick field and the global field share: the header's values, the indirection and
+// the atlas (every index in range, every count what the header implies, values within the band: a
+// NaN would stall no march but mislead every bound); band and quantization are recomputed from
+// the parameters, never taken from the file.
+struct FieldSections {
+  uint32_t owner, slots, atlas;  // section owner and kinds
+};
+BrickField read_field(const Reader& r, const std::string& what, const glm::vec3& origin, float voxel,
+                      const glm::uvec3& bricks, uint32_t stored, double build_ms, SdfFormat format, uint32_t band,
+                      FieldSections sections) {
+  r.require(finite(origin) && positive_finite(voxel), what + ": origin or voxel not finite");
+  r.require(bricks.x && bricks.y && bricks.z && cell_product(bricks) <= kMaxBricks, what + ": bad dimensions");
+  r.require(stored <= cell_product(bricks), what + ": more stored bricks than bricks");
+  BrickField f;
+  f.origin = origin;
+  f.voxel = voxel;
+  f.bricks = bricks;
+  f.format = format;
+  f.band = static_cast<float>(band) * voxel;
+  f.quantization = brick_quantization(format, f.band);
+  f.build_ms = build_ms;
+  r.require(positive_finite(f.band) && std::isfinite(f.quantization), what + ": band not finite");
+  f.indirection = r.section<uint32_t>(sections.slots, sections.owner);
+  r.require(f.indirection.size() == cell_product(bricks), what + ": indirection has " + std::to_string(f.indirection.size()) +
+                                                                " entries for " + std::to_string(cell_product(bricks)) + " bricks");
+  r.require(std::all_of(f.indirection.begin(), f.indirection.end(), [&](uint32_t s) { return s == kEmptyBrick || s < stored; }),
+            what + ": a brick's atlas index is out of range");
+  f.atlas = r.section<uint8_t>(sections.atlas, sections.owner);
+  r.require(f.atlas.size() == uint64_t{stored} * kBrickSamples * bytes_per_sample(format),
+            what + ": atlas of " + std::to_string(f.atlas.size()) + " bytes for " + std::to_string(stored) + " bricks");
+  check_atlas_values(r, f, what);
+  return f;
+}
+
+// A mesh's brick field, its coarse level at the brick corners (signed, finite).
 BrickField read_bricks(const Reader& r, uint32_t mesh, const BrickFieldParams& params) {
   const std::string what = "mesh " + std::to_string(mesh) + " brick field";
   const BrickHeader h = r.single<BrickHeader>(kBrickHeader, mesh);
-  r.require(finite(h.origin) && positive_finite(h.voxel), what + ": origin or voxel not finite");
-  r.require(h.bricks.x && h.bricks.y && h.bricks.z && cell_product(h.bricks) <= kMaxBricks, what + ": bad dimensions");
-  r.require(h.stored <= cell_product(h.bricks), what + ": more stored bricks than bricks");
-  BrickField f;
-  f.origin = h.origin;
-  f.voxel = h.voxel;
-  f.bricks = h.bricks;
-  f.format = params.format;
-  f.band = static_cast<float>(params.band) * h.voxel;
-  f.quantization = brick_quantization(params.format, f.band);
-  f.build_ms = h.build_ms;
-  r.require(positive_finite(f.band), what + ": band not finite");
-  f.indirection = r.section<uint32_t>(kBrickSlots, mesh);
-  r.require(f.indirection.size() == cell_product(h.bricks), what + ": indirection has " + std::to_string(f.indirection.size()) +
-                                                                  " entries for " + std::to_string(cell_product(h.bricks)) + " bricks");
-  r.require(std::all_of(f.indirection.begin(), f.indirection.end(), [&](uint32_t s) { return s == kEmptyBrick || s < h.stored; }),
-            what + ": a brick's atlas index is out of range");
-  f.atlas = r.section<uint8_t>(kBrickAtlas, mesh);
-  r.require(f.atlas.size() == uint64_t{h.stored} * kBrickSamples * bytes_per_sample(params.format),
-            what + ": atlas of " + std::to_string(f.atlas.size()) + " bytes for " + std::to_string(h.stored) + " bricks");
-  check_atlas_values(r, f, what);
+  BrickField f = read_field(r, what, h.origin, h.voxel, h.bricks, h.stored, h.build_ms, params.format, params.band,
+                            {mesh, kBrickSlots, kBrickAtlas});
   f.coarse = r.section<float>(kBrickCoarse, mesh);
   r.require(f.coarse.size() == cell_product(h.bricks + 1u), what + ": coarse level count differs from its brick corners");
   r.require(std::all_of(f.coarse.begin(), f.coarse.end(), [](float v) { return std::isfinite(v); }),
@@ -367,37 +380,18 @@ BrickField read_bricks(const Reader& r, uint32_t mesh, const BrickFieldParams& p
   return f;
 }
 
-// The scene's global field: the brick checks (with the global sections), coarse values as the
-// lower bounds they are (finite, >= 0), and the per-brick instance lists as a prefix sum over the
-// stored bricks whose every entry names an instance of the scene.
+// The scene's global field: its coarse level one lower bound per brick (finite, >= 0), and the
+// per-brick instance lists as a prefix sum over the stored bricks whose every entry names an
+// instance of the scene.
 GlobalField read_global(const Reader& r, const GlobalFieldParams& params, uint32_t instance_count) {
   const std::string what = "global field";
   const GlobalHeader h = r.single<GlobalHeader>(kGlobalHeader, 0);
-  r.require(instance_count >= 1, what + ": the scene has no instances");
-  r.require(finite(h.origin) && positive_finite(h.voxel), what + ": origin or voxel not finite");
-  r.require(h.bricks.x && h.bricks.y && h.bricks.z && cell_product(h.bricks) <= kMaxBricks, what + ": bad dimensions");
-  r.require(h.stored <= cell_product(h.bricks), what + ": more stored bricks than bricks");
   GlobalField g;
   g.voxel_request = params.voxel;
   g.build_ms = h.build_ms;
+  g.field = read_field(r, what, h.origin, h.voxel, h.bricks, h.stored, h.build_ms, params.format, params.band,
+                       {0, kGlobalSlots, kGlobalAtlas});
   BrickField& f = g.field;
-  f.origin = h.origin;
-  f.voxel = h.voxel;
-  f.bricks = h.bricks;
-  f.format = params.format;
-  f.band = static_cast<float>(params.band) * h.voxel;
-  f.quantization = brick_quantization(params.format, f.band);
-  f.build_ms = h.build_ms;
-  r.require(positive_finite(f.band) && std::isfinite(f.quantization), what + ": band not finite");
-  f.indirection = r.section<uint32_t>(kGlobalSlots, 0);
-  r.require(f.indirection.size() == cell_product(h.bricks), what + ": indirection has " + std::to_string(f.indirection.size()) +
-                                                                  " entries for " + std::to_string(cell_product(h.bricks)) + " bricks");
-  r.require(std::all_of(f.indirection.begin(), f.indirection.end(), [&](uint32_t s) { return s == kEmptyBrick || s < h.stored; }),
-            what + ": a brick's atlas index is out of range");
-  f.atlas = r.section<uint8_t>(kGlobalAtlas, 0);
-  r.require(f.atlas.size() == uint64_t{h.stored} * kBrickSamples * bytes_per_sample(params.format),
-            what + ": atlas of " + std::to_string(f.atlas.size()) + " bytes for " + std::to_string(h.stored) + " bricks");
-  check_atlas_values(r, f, what);
   f.coarse = r.section<float>(kGlobalCoarse, 0);
   f.coarse_at_centres = true;
   r.require(f.coarse.size() == cell_product(h.bricks), what + ": coarse level count differs from its bricks");
