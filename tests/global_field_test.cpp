@@ -2,6 +2,7 @@
 // over all triangles of all instances, through the kernel's own sampling code (brick_sample.glsl
 // compiled as C++); its brick lists against the instances' surfaces; the backend's images against
 // Embree; its field hits' accuracy; its errors.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
