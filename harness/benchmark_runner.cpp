@@ -1,13 +1,16 @@
 #include "harness/benchmark_runner.h"
 
 #include <chrono>
+#include <iostream>
 #include <set>
+#include <thread>
 
 #include "harness/system_info.h"
 #include "harness/timing_stats.h"
 #include "renderers/embree/embree_api.h"
 #include "scenes/scene_source.h"
 #include "util/cpu_info.h"
+#include "util/machine_load.h"
 
 namespace sdfbench {
 namespace {
@@ -129,10 +132,23 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
     last = renderer->render(request);
     rendered = true;
   }
+  const LoadMeter load_meter;
   while (timed.size() < settings_.frames && (!rendered || room_for_another(last.wall_ms))) {
     last = renderer->render(request);
     rendered = true;
     timed.push_back(last);
+  }
+  if (const std::optional<MachineLoad> load = load_meter.stop()) {
+    m.load_avg = load->load_avg;
+    m.cpu_steal_pct = load->steal_pct;
+    m.cpu_other_pct = load->other_pct;
+    m.busy = load->busy(std::max(1u, std::thread::hardware_concurrency()));
+    if (*m.busy && !warned_busy_) {
+      warned_busy_ = true;
+      std::cerr << "sdfbench: warning: the machine was busy while rows were timed (load average " << load->load_avg
+                << ", steal " << load->steal_pct << " %, other processes " << load->other_pct
+                << " % of the CPUs); such rows are flagged (busy column, ‡ in the markdown)\n";
+    }
   }
   if (timed.empty()) timed.push_back(last);  // the budget allowed only the warm-up frame: report it, flagged
   m.budget_cut = timed.size() < settings_.frames;

@@ -51,6 +51,7 @@ class BenchmarkRunner {
   std::string scene_spec_;  // one scene at a time: a 1000-instance scene is worth keeping, not ten
   std::unique_ptr<Scene> scene_;
   std::map<std::string, FrameImages> references_;  // by scene + mode, for the current scene
+  bool warned_busy_ = false;  // the busy-machine warning is said once per run
 };
 
 }  // namespace sdfbench

@@ -43,6 +43,7 @@ std::string fps_cell(const Row& r) {
   if (r["budget_cut"] == "1") text += " †";
   if (r["agreement"].rfind("DISAGREE", 0) == 0) text += " ✗";
   if (truncated(r)) text += " ✂";
+  if (r.table->has_column("busy") && r["busy"] == "1") text += " ‡";
   return text;
 }
 
@@ -259,7 +260,7 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
   for (const std::vector<Row>& sweep : sweeps) sweep_table(out, sweep);
   if (rows.empty()) out << "(no measurements)\n";
   out << "Flags: ✗ images disagree with the reference (see the CSV's agreement column), † the time budget cut the run "
-         "(fewer frames than asked; a single cold frame when only the warm-up fitted), ✂ lavapipe's loop limit cut pixels "
+         "(fewer frames than asked; a single cold frame when only the warm-up fitted), ‡ timed on a busy machine (load average above 1.5x the cores, CPU steal above 5 % or other processes above 10 %: the CSV's load columns), ✂ lavapipe's loop limit cut pixels "
          "short, or a traversal reached its hard bound (image and FPS invalid; README, \"The loop limit\"), ERROR the configuration failed.\n";
   return out.str();
 }

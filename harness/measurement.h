@@ -56,6 +56,9 @@ struct Measurement {
   std::optional<double> depth_p99, depth_p99_voxels;
   std::string agreement;  // "ok", "reference", "DISAGREE: <what>", "TRUNCATED: <n> pixels" or "ERROR: <message>"
   bool budget_cut = false;
+  // how busy the machine was over the timed frames (util/machine_load.h); empty where /proc is unreadable
+  std::optional<double> load_avg, cpu_steal_pct, cpu_other_pct;
+  std::optional<bool> busy;
   // where
   std::string device, driver, cpu;
   std::string embree;  // Embree's version ("3.13.5", "4.3.3"): the reference backend and the bvh builder

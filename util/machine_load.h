@@ -1,0 +1,37 @@
+#pragma once
+// How busy the machine was while a row was timed (issue 30): sdfbench runs on shared VMs whose
+// other tenants and processes show up in timings, so every row records, from /proc, the 1-minute
+// load average and, over its timed frames, the share of CPU time the hypervisor stole and the share
+// other processes used. A row timed on a busy machine is flagged (MachineLoad::busy).
+#include <cstdint>
+#include <optional>
+
+namespace sdfbench {
+
+struct MachineLoad {
+  double load_avg = 0.0;   // /proc/loadavg, 1 minute, at the interval's end
+  double steal_pct = 0.0;  // CPU time stolen by the hypervisor, % of all CPUs' time over the interval
+  double other_pct = 0.0;  // CPU time used by other processes, % of all CPUs' time over the interval
+  // Busy: steal above kBusyStealPct, other processes above kBusyOtherPct, or a load average above
+  // 1.5x the core count (this process alone accounts for up to one runnable thread per core).
+  bool busy(unsigned cores) const;
+};
+inline constexpr double kBusyStealPct = 5.0;
+inline constexpr double kBusyOtherPct = 10.0;
+
+// Starts measuring when made; stop() gives the interval's load, or nothing where /proc cannot be
+// read (not Linux, a sandbox): the row's load columns stay empty then.
+class LoadMeter {
+ public:
+  LoadMeter();
+  std::optional<MachineLoad> stop() const;
+
+ private:
+  struct Ticks {
+    uint64_t total = 0, busy = 0, steal = 0, self = 0;
+  };
+  static std::optional<Ticks> read_ticks();
+  std::optional<Ticks> start_;
+};
+
+}  // namespace sdfbench
