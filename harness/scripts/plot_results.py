@@ -5,7 +5,8 @@
 
 Writes, for whatever the CSVs contain:
   fps_vs_objects_<mode>.png   FPS vs object count (log-log), one panel per mesh, one line per backend
-  thesis_vs_measured.png      each thesis table: our FPS and the thesis' FPS vs object count, per mesh
+  thesis_vs_measured.png      each thesis table: our FPS and the thesis' FPS vs object count, per mesh,
+                              each series naming its device, resolution and mode
   sweep_<metric>.png          sweep heat maps: hash cell x octree depth -> FPS, steps/ray and
                               instance evaluations/ray (sweeps of the hash and octree)
   brick_sweep.png             sdf-bricks sweeps over --voxels: Mrays/s and the depth error in voxels
@@ -33,6 +34,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 THESIS_CSV = os.path.join(HERE, "..", "..", "scenes", "thesis_tables.csv")
+THESIS_DEVICE = "GTX 1070, 1280x720"
+
+
+def short_device(name):
+    """'llvmpipe (LLVM 15.0.6, 256 bits)' -> 'llvmpipe': a legend's worth of the device's name."""
+    return name.split(" (")[0] or "?"
+
+
 THESIS_CONFIG = {"6.1": ("sdf-octree", "whitted"), "6.2": ("sdf-hash", "whitted"), "6.3": ("tri-aabb", "shadow")}
 
 
@@ -96,7 +105,8 @@ def fps_vs_objects(rows, out_dir):
                 if r["mesh"] == mesh:
                     series[r["backend"]].append((int(r["objects"]), float(r["fps"]), r))
             for backend, points in series.items():
-                plot_series(ax, points, backend)
+                first = points[0][2]
+                plot_series(ax, points, f"{backend} ({short_device(first['device'])}, {first['width']}x{first['height']})")
             ax.set_xscale("log")
             ax.set_yscale("log")
             ax.set_title(f"{mesh}, {mode}")
@@ -105,7 +115,8 @@ def fps_vs_objects(rows, out_dir):
             ax.grid(True, which="both", alpha=0.3)
             ax.legend(fontsize=8)
         sizes = sorted({f'{r["width"]}x{r["height"]}' for r in mode_rows})
-        fig.suptitle(f"FPS vs object count ({', '.join(sizes)}; device: {mode_rows[0]['device']})", fontsize=10)
+        devices = sorted({r["device"] for r in mode_rows})
+        fig.suptitle(f"FPS vs object count, {mode} ({', '.join(sizes)}; devices: {'; '.join(devices)})", fontsize=9)
         save(fig, os.path.join(out_dir, f"fps_vs_objects_{mode}.png"))
 
 
@@ -118,13 +129,14 @@ def thesis_vs_measured(rows, out_dir):
     fig, axes = plt.subplots(1, len(tables), figsize=(4.8 * len(tables), 3.8), squeeze=False)
     for ax, table in zip(axes[0], tables):
         table_rows = [r for r in rows if r["table"] == table and usable(r)]
+        backend, mode = THESIS_CONFIG[table]
         for mesh in dict.fromkeys(r["mesh"] for r in table_rows):
             ours = [(int(r["objects"]), float(r["fps"]), r) for r in table_rows if r["mesh"] == mesh]
-            plot_series(ax, ours, f"{mesh} (ours)")
+            first = next(r for r in table_rows if r["mesh"] == mesh)
+            plot_series(ax, ours, f"{mesh}: ours, {short_device(first['device'])}, {first['width']}x{first['height']}, {mode}")
             theirs = [(n, thesis[(table, mesh, n)], None) for n, _, _ in ours if (table, mesh, n) in thesis]
             if theirs:
-                plot_series(ax, theirs, f"{mesh} (thesis)", marker="x")
-        backend, mode = THESIS_CONFIG[table]
+                plot_series(ax, theirs, f"{mesh}: thesis, {THESIS_DEVICE}, {mode}", marker="x")
         ax.set_title(f"table {table}: {backend}, {mode}")
         ax.set_xscale("log")
         ax.set_yscale("log")
@@ -132,7 +144,12 @@ def thesis_vs_measured(rows, out_dir):
         ax.set_ylabel("FPS")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle("Thesis (GTX 1070, 1280x720) vs measured here", fontsize=10)
+    sizes = sorted({f'{r["width"]}x{r["height"]}' for r in rows if r["table"] in tables})
+    other = [size for size in sizes if size != "1280x720"]
+    note = (f"; ours at {', '.join(other)}, the thesis at 1280x720: FPS not comparable across resolutions"
+            if other else "; both at 1280x720")
+    devices = sorted({short_device(r["device"]) for r in rows if r["table"] in tables})
+    fig.suptitle(f"the thesis' FPS ({THESIS_DEVICE}) and ours ({', '.join(devices)}){note}", fontsize=9)
     save(fig, os.path.join(out_dir, "thesis_vs_measured.png"))
 
 
