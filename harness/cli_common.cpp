@@ -120,7 +120,7 @@ void add_structure_options(CLI::App& command, BackendOptions& options) {
       ->capture_default_str()->check(CLI::Range(1u, 1024u))->group(group);
   command.add_flag("--fixed-grid", [&options](int64_t) { options.mesh_grid.scale_with_triangles = false; },
                    "keep --cells-per-extent for meshes over 8192 triangles too (default: finer with the triangle count, "
-                   "far cells as bounds; README, \"Large meshes\")")
+                   "far cells as bounds; docs/measured.md, \"Large meshes\")")
       ->group(group);
   command.add_option("--hash-cell", options.scene_hash.hash_cell,
                      "scene hash cell size (thesis: 10 with octree, 1 without; sdf-hash defaults to 1)")

@@ -20,7 +20,7 @@ namespace sdfbench {
 namespace {
 
 // Runs the loop-cap probe on the device: drivers with a cap get whitted in passes and flag (✂)
-// what the cap cuts short (README, "The loop limit").
+// what the cap cuts short (docs/limits.md, "The loop limit").
 std::string describe_loop_cap(const VulkanDeviceInfo& device) {
   try {
     const VulkanContext context(VulkanContext::Options{std::to_string(device.index), false});

@@ -261,7 +261,7 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
   if (rows.empty()) out << "(no measurements)\n";
   out << "Flags: ✗ images disagree with the reference (see the CSV's agreement column), † the time budget cut the run "
          "(fewer frames than asked; a single cold frame when only the warm-up fitted), ‡ timed on a busy machine (load average above 1.5x the cores, CPU steal above 5 % or other processes above 10 %: the CSV's load columns), ✂ lavapipe's loop limit cut pixels "
-         "short, or a traversal reached its hard bound (image and FPS invalid; README, \"The loop limit\"), ERROR the configuration failed.\n";
+         "short, or a traversal reached its hard bound (image and FPS invalid; docs/limits.md, \"The loop limit\"), ERROR the configuration failed.\n";
   return out.str();
 }
 

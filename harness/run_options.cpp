@@ -51,7 +51,7 @@ void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& opti
   const CsvTable rows = run_plan(plan, runner, plan_options);
   write_markdown(options.markdown, rows);
   std::cout << "\n" << markdown_report(rows, ThesisTables::load_default());
-  // The exit status says what the rows say (README, "Tables, sweeps and their CSV").
+  // The exit status says what the rows say (docs/commands.md, "Tables, sweeps and their CSV").
   size_t failed = 0, disagreed = 0;
   const size_t agreement = rows.column("agreement");
   for (const auto& row : rows.rows) {

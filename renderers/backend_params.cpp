@@ -22,12 +22,12 @@ const ParamSpec& spec_of(const std::string& name) {
 const std::vector<ParamSpec>& param_specs() {
   // sdf-bricks: the per-mesh brick fields (renderers/sdf/brick_field.h) and how sdf_bricks.comp
   // uses them; sdf-global: the scene's one field (global_field.h) in the same brick format.
-  // Defaults from the measurements in results/lavapipe/ (README, "sdf-bricks", "sdf-global").
+  // Defaults from the measurements in results/lavapipe/ (docs/backends.md, "sdf-bricks", "sdf-global").
   const std::vector<std::string> bricks = {"sdf-bricks"}, both = {"sdf-bricks", "sdf-global"}, global = {"sdf-global"};
   static const std::vector<ParamSpec> specs = {
       {"voxels", bricks, "128", "brick field lattice cells along each mesh's largest extent", {}, 4, 1024},
       {"global_voxel", global, "auto",
-       "the global field's voxel in world units; auto: the median instance's largest extent / 10 (README, \"sdf-global\")",
+       "the global field's voxel in world units; auto: the median instance's largest extent / 10 (docs/backends.md, \"sdf-global\")",
        {"auto"}, 0, 0, true},
       {"sdf_format", both, "f32", "stored field values: f32, f16 or u8 (a band-relative UNORM)", {"f32", "f16", "u8"}},
       {"brick_band", both, "4", "bricks within this many voxels of the surface are stored", {}, 1, 16},
@@ -37,7 +37,7 @@ const std::vector<ParamSpec>& param_specs() {
        {"instance", "min"}},
       {"brick_fetch", both, "auto",
        "texel: 8 texel-buffer fetches and the trilinear in the kernel; sampler: the atlas as a 3D image the sampler "
-       "filters; auto: by device, from the measurement (README, \"sdf-bricks\"); the row's backend_resolved says which",
+       "filters; auto: by device, from the measurement (docs/backends.md, \"sdf-bricks\"); the row's backend_resolved says which",
        {"auto", "texel", "sampler"}},
   };
   return specs;

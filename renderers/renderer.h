@@ -73,7 +73,7 @@ struct FrameResult {
   double wall_ms = 0.0;     // submit + wait (Vulkan) or the whole frame (CPU)
   uint64_t rays = 0;        // every ray traced (primary + shadow + secondary)
   WorkCounters counters;    // instrumented frames: the work of all rays (per ray: / rays)
-  // Pixels cut short, by lavapipe's loop limit (README "The loop limit") or by the kernel's own
+  // Pixels cut short, by lavapipe's loop limit (docs/limits.md "The loop limit") or by the kernel's own
   // bound on a traversal (bound_pixels of them): when not 0, the image and the frame time are invalid.
   uint64_t truncated_pixels = 0;
   uint64_t bound_pixels = 0;
@@ -114,7 +114,7 @@ void check_backend_name(const std::string& name);
 std::unique_ptr<Renderer> create_renderer(const std::string& name, const BackendOptions& options);
 
 // "<backend>: lavapipe's loop limit ... cut N pixels short: ..." for a frame with truncated pixels
-// (README "The loop limit"); empty when none were.
+// (docs/limits.md "The loop limit"); empty when none were.
 std::string truncation_error(const std::string& backend, const FrameResult& frame);
 
 // Worker threads for CPU backends: options.threads, else LP_NUM_THREADS (what lavapipe

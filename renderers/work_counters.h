@@ -1,5 +1,5 @@
 #pragma once
-// Work counters of instrumented frames (FrameRequest::counters; README "Counters"): which
+// Work counters of instrumented frames (FrameRequest::counters; docs/commands.md "Counters"): which
 // counters a backend has, and the frame totals from the per-pixel counts.
 #include <array>
 #include <cstdint>

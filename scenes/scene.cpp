@@ -57,7 +57,7 @@ void require_within(const std::string& where, std::initializer_list<glm::vec3> p
   const float largest = largest_coordinate(points);
   if (largest <= kMaxCoordinate) return;
   throw Error(where + ": " + what + " reaches a coordinate of " + short_float(largest) + ", beyond the limit of " +
-              short_float(kMaxCoordinate) + " in magnitude (README \"Inputs, outputs and limits\")");
+              short_float(kMaxCoordinate) + " in magnitude (docs/limits.md \"Inputs, outputs and limits\")");
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The loop-cap guard (README "The loop limit"), tested on a real capped driver: Debian 12's own
+// The loop-cap guard (docs/limits.md "The loop limit"), tested on a real capped driver: Debian 12's own
 // lavapipe (Mesa 22.3), unpacked by harness/scripts/fetch_old_lavapipe.sh and selected through
 // VK_DRIVER_FILES for the test's process (and the sdfbench it starts) only. The default driver
 // (Mesa 25) has no cap: the same scenes render in full there.

@@ -1,4 +1,4 @@
-// Work counters of instrumented frames (README "Counters"): sdf-cpu and the Vulkan kernel count
+// Work counters of instrumented frames (docs/commands.md "Counters"): sdf-cpu and the Vulkan kernel count
 // the same work, the counts are plausible, and timed frames count nothing.
 #include <numeric>
 #include <random>

@@ -38,7 +38,7 @@ case "$release" in
   *)
     system="$( (. /etc/os-release 2>/dev/null && echo "${PRETTY_NAME:-}") || true)"
     echo "install_deps: error: sdfbench installs its dependencies on Debian 12 (bookworm) and Debian 13 (trixie)" \
-      "only; this system is '${system:-unknown (no /etc/os-release)}' (README, \"Supported systems\")" >&2
+      "only; this system is '${system:-unknown (no /etc/os-release)}' (docs/development.md, \"Supported systems\")" >&2
     exit 1 ;;
 esac
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds a relocatable sdfbench bundle for a Linux x86-64 machine that cannot install anything
-# (a GPU machine with only its driver; README, "Running on a GPU machine"): the Release binary,
+# (a GPU machine with only its driver; docs/cluster-and-gpu.md, "Running on a GPU machine"): the Release binary,
 # the shared libraries it needs beyond glibc, the scene data, gpu_run.sh and a launcher that
 # sets the library path, as one .tar.gz.
 #

@@ -1,7 +1,7 @@
 #!/bin/bash
 # A Slurm job array that runs one sdfbench table (or sweep) in N shards, one shard per array
 # task; merge the shard CSVs when every task is done. Submit from the repository root after
-# building (harness/scripts/build.sh); README, "Running on a cluster":
+# building (harness/scripts/build.sh); docs/cluster-and-gpu.md, "Running on a cluster":
 #
 #   sbatch --array=1-8 harness/scripts/slurm_table.sh --shards 8                 # the full tables
 #   sbatch --array=1-3 --cpus-per-task=2 harness/scripts/slurm_table.sh --shards 3 --out results/small \

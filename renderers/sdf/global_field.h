@@ -36,7 +36,7 @@ void validate(const GlobalFieldParams& params);          // throws Error naming 
 
 // --global-voxel auto: the median instance's largest world extent / kAutoVoxelsPerInstance (so a
 // typical object spans that many voxels, whatever the scene's units), but never more than
-// kMaxGlobalCells cells along the scene's largest extent. Chosen by measurement (README, "sdf-global").
+// kMaxGlobalCells cells along the scene's largest extent. Chosen by measurement (docs/backends.md, "sdf-global").
 inline constexpr float kAutoVoxelsPerInstance = 10.0f;
 inline constexpr uint32_t kMaxGlobalCells = 2048;
 float auto_global_voxel(const Scene& scene);

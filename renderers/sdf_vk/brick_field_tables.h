@@ -16,7 +16,7 @@
 namespace sdfbench {
 
 // --brick-fetch as used on `device`: "auto" is the sampler on a GPU (hardware filtering) and, on
-// a CPU device (lavapipe), what measured faster there (README, "sdf-bricks").
+// a CPU device (lavapipe), what measured faster there (docs/backends.md, "sdf-bricks").
 bool use_sampler(const std::string& brick_fetch, const VulkanDeviceInfo& device);
 
 // --hit field: rays leave a field hit from this many of the scene's largest voxels off it (the

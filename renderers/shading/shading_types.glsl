@@ -29,7 +29,7 @@
 // stack never holds more than one pending ray per depth plus the pair just pushed.
 #define STACK_SIZE (MAX_DEPTH_LIMIT + 1u)
 
-// Work counters of instrumented frames (README "Counters"): per pixel, summed over all its rays,
+// Work counters of instrumented frames (docs/commands.md "Counters"): per pixel, summed over all its rays,
 // COUNTER_KINDS of them per pixel in this order.
 #define COUNTER_STEPS 0u           // sphere-tracing steps (scene distance queries)
 #define COUNTER_INSTANCE_EVALS 1u  // instance distances: a mesh grid queried in an instance's frame
@@ -129,7 +129,7 @@ struct GpuAov {
 };
 
 // Why a pixel was cut short (GpuAov ids.w; 0: it was not): the driver's per-invocation loop
-// limit (README "The loop limit"), or the kernel's own hard bound on a traversal (a stack, an
+// limit (docs/limits.md "The loop limit"), or the kernel's own hard bound on a traversal (a stack, an
 // iteration count).
 #define CUT_LOOP_CAP 1u
 #define CUT_TRAVERSAL_BOUND 2u

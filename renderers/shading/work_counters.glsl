@@ -1,4 +1,4 @@
-// Work counters of instrumented frames (README "Counters"). VulkanFrameRunner compiles those
+// Work counters of instrumented frames (docs/commands.md "Counters"). VulkanFrameRunner compiles those
 // kernels with COUNTERS 1: the backend's trace code adds its work to `counted` with COUNT, and
 // render_main.glsl adds `counted` to the pixel's entry of the counter buffer. Otherwise COUNT is
 // empty, so timed frames pay nothing.

@@ -9,8 +9,8 @@
 # Needs root (debootstrap, chroot, mounts) and Debian's mirror.
 #   tests/debian13/debian13_test.sh [--fresh] [--tests REGEX]
 # --tests limits the test command to the ctest tests matching REGEX (run_tests.sh passes ctest
-# arguments through); .ci/run uses a subset to stay within its time (README, "Continuous
-# integration"). The root is kept in $DEBIAN13_WORK (default /tmp/sdfbench-debian13) and reused by
+# arguments through); .ci/run uses a subset to stay within its time (docs/development.md,
+# "Tests"). The root is kept in $DEBIAN13_WORK (default /tmp/sdfbench-debian13) and reused by
 # a later run (its packages and build stay; the source copy is refreshed); --fresh remakes it.
 set -euo pipefail
 cd "$(dirname "$0")/../.."

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The cluster workflow (README, "Running on a cluster") against a real, running Slurm: starts a
+# The cluster workflow (docs/cluster-and-gpu.md, "Running on a cluster") against a real, running Slurm: starts a
 # single-node Slurm on this machine (tests/slurm/start_cluster.sh: slurm-wlm 22.05 and munge
 # from Debian 12), submits harness/scripts/slurm_table.sh as the README documents, and checks:
 #   1. a 3-task array, merged, gives the unsharded run's rows: same keys, order, deterministic columns;
