@@ -64,19 +64,6 @@ Composite composite(const Scene& scene, const SamplingGrids& sampling, const std
 
 float signed_value(const Composite& c) { return c.inside ? -c.value : c.value; }
 
-// All of a scene's instances, as a candidate list.
-struct AllInstances {
-  uint32_t n;
-  struct It {
-    uint32_t i;
-    uint32_t operator*() const { return i; }
-    It& operator++() { return ++i, *this; }
-    bool operator!=(const It& o) const { return i != o.i; }
-  };
-  It begin() const { return {0}; }
-  It end() const { return {n}; }
-};
-
 }  // namespace
 
 std::string describe(const GlobalFieldParams& params) {
@@ -105,14 +92,6 @@ float auto_global_voxel(const Scene& scene) {
   const glm::vec3 scene_extent = scene.instance_bounds().extent();
   const float largest = std::max({scene_extent.x, scene_extent.y, scene_extent.z});
   return std::max(extents[extents.size() / 2] / kAutoVoxelsPerInstance, largest / float(kMaxGlobalCells));
-}
-
-float global_distance(const Scene& scene, const SceneSdf& sdf, const glm::vec3& p) {
-  std::vector<Aabb> boxes;
-  for (const Instance& instance : scene.instances) boxes.push_back(scene.world_bounds(instance));
-  SamplingGrids sampling{{}, &sdf.world_to_object};
-  for (const MeshDistanceGrid& grid : sdf.mesh_grids) sampling.grids.push_back(&grid);
-  return signed_value(composite(scene, sampling, boxes, AllInstances{uint32_t(scene.instances.size())}, p));
 }
 
 GlobalField build_global_field(const Scene& scene, const SceneSdf& scene_sdf, const MeshGridParams& mesh_params,

@@ -66,8 +66,4 @@ inline constexpr float kMaxSamplingMarginCells = 16.0f;
 GlobalField build_global_field(const Scene& scene, const SceneSdf& sdf, const MeshGridParams& mesh_params,
                                const GlobalFieldParams& params);
 
-// The signed composite distance at world point p over all instances (the build's value before
-// clamping): for tests and the coarse level.
-float global_distance(const Scene& scene, const SceneSdf& sdf, const glm::vec3& p);
-
 }  // namespace sdfbench::sdf
