@@ -119,6 +119,7 @@ CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner,
   CsvTable table;
   table.columns = measurement_columns();
   const std::string run_id = plan_run_id(plan, runner.settings());
+  runner.set_run_id(run_id);
   std::optional<OutputLock> lock;  // held for the whole run: another run on this CSV would replace its rows
   std::set<std::string> done;
   if (!options.csv.empty()) {

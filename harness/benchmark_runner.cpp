@@ -1,10 +1,13 @@
 #include "harness/benchmark_runner.h"
 
+#include <cctype>
 #include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <set>
 #include <thread>
 
+#include "harness/image_output.h"
 #include "harness/system_info.h"
 #include "harness/timing_stats.h"
 #include "renderers/embree/embree_api.h"
@@ -30,6 +33,19 @@ std::pair<std::string, size_t> mesh_summary(const Scene& scene) {
     triangles += scene.meshes[m].triangle_count();
   }
   return {names, triangles};
+}
+
+// Letters, digits, '.', '-' and '_' of `text`, the rest as '_', at most 60 characters: a file name part.
+std::string file_name_part(const std::string& text) {
+  std::string part;
+  for (char c : text.substr(0, 60)) part += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_' ? c : '_';
+  return part;
+}
+
+// `path` relative to `base` (both as the process reaches them), or as it is without a base.
+std::string relative_to(const std::filesystem::path& path, const std::filesystem::path& base) {
+  if (base.empty()) return path.string();
+  return std::filesystem::weakly_canonical(path).lexically_relative(std::filesystem::weakly_canonical(base)).string();
 }
 
 }  // namespace
@@ -101,6 +117,33 @@ const FrameImages& BenchmarkRunner::reference(const BenchConfig& config) {
   renderer->prepare(scene(config.scene));
   FrameRequest request{settings_.check_size.width, settings_.check_size.height, config.mode, true, config.max_depth};
   return references_.emplace(key, std::move(renderer->render(request).images)).first->second;
+}
+
+CheckedFrame BenchmarkRunner::check_frame(const BenchConfig& config) {
+  std::unique_ptr<Renderer> renderer = create_renderer(config.backend, config.options);
+  renderer->prepare(scene(config.scene));
+  const FrameRequest check{settings_.check_size.width, settings_.check_size.height, config.mode, true, config.max_depth};
+  CheckedFrame out;
+  out.frame = std::move(renderer->render(check).images);
+  out.reference = reference(config);
+  const std::optional<StructureStats> stats = renderer->structure_stats();
+  out.agreement = compare_frames(out.frame, out.reference, stats ? stats->instance_voxels : std::vector<float>{});
+  return out;
+}
+
+void BenchmarkRunner::keep_images(const BenchConfig& config, size_t run_index, const FrameImages& frame, Measurement& m) {
+  char index[16];
+  std::snprintf(index, sizeof index, "%04zu", run_index);
+  const std::string stem = run_id_.substr(0, 8) + "-" + index + "-" + file_name_part(config.scene) + "-" +
+                           file_name_part(config.backend) + "-" + to_string(config.mode);
+  const std::filesystem::path dir = settings_.keep_images;
+  const FrameImages& ref = config.backend == settings_.reference ? frame : reference(config);
+  write_color_image(frame, dir / (stem + ".frame.png"));
+  write_color_image(ref, dir / (stem + ".reference.png"));
+  write_difference_map(frame, ref, dir / (stem + ".diff.png"));
+  m.frame_image = relative_to(dir / (stem + ".frame.png"), settings_.images_base);
+  m.reference_image = relative_to(dir / (stem + ".reference.png"), settings_.images_base);
+  m.diff_image = relative_to(dir / (stem + ".diff.png"), settings_.images_base);
 }
 
 Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
@@ -197,6 +240,8 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
     m.agreement = "TRUNCATED: " + std::to_string(checked.truncated_pixels) + " pixels at the check size";
   if (const uint32_t messages = renderer->validation_messages(); messages > 0)
     m.agreement += " (" + std::to_string(messages) + " validation messages)";
+
+  if (!settings_.keep_images.empty()) keep_images(config, run_index, checked.images, m);
 
   m.device = renderer->device_name();
   m.driver = renderer->driver_name();

@@ -7,6 +7,7 @@
 
 #include "renderers/renderer.h"
 #include "scenes/scene.h"
+#include "util/image_codec.h"
 
 namespace sdfbench {
 
@@ -14,10 +15,10 @@ struct ImageSize {
   uint32_t width = 0, height = 0;
 };
 
-// Frame sizes every command accepts: each side up to kMaxImageSide, and at most kMaxImagePixels
+// Frame sizes every command accepts: each side up to kMaxImageSide (util/image_codec.h: what the
+// image files sdfbench reads and writes allow), and at most kMaxImagePixels
 // in all, so that the frame's images (~44 bytes per pixel for each one held, more on the
 // backend's side) are refused up front rather than running out of memory mid-render.
-inline constexpr uint32_t kMaxImageSide = 16384;
 inline constexpr uint64_t kMaxImagePixels = uint64_t(1) << 25;  // 8192x4096; 7680x4320 fits
 
 // "WxH" within the limits above; throws Error naming `flag` otherwise.

@@ -13,6 +13,7 @@ void register_inspect_command(CLI::App& app);
 void register_table_command(CLI::App& app);
 void register_sweep_command(CLI::App& app);
 void register_merge_command(CLI::App& app);
+void register_report_command(CLI::App& app);
 
 }  // namespace sdfbench
 

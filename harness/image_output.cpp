@@ -62,12 +62,14 @@ void check_aov_path(const fs::path& path, const char* what) {
   check_image_path(path, what);
 }
 
-void write_color_image(const FrameImages& images, const fs::path& path) {
+FloatImage color_image(const FrameImages& images) {
   FloatImage image{images.width, images.height, {"R", "G", "B", "A"}, {}};
   image.pixels.reserve(images.color.size() * 4);
   for (const glm::vec4& c : images.color) image.pixels.insert(image.pixels.end(), {c.x, c.y, c.z, c.w});
-  write_atomically(path, image);
+  return image;
 }
+
+void write_color_image(const FrameImages& images, const fs::path& path) { write_atomically(path, color_image(images)); }
 
 HeatmapRange write_heatmap(const std::vector<uint32_t>& values, uint32_t width, uint32_t height, const fs::path& path) {
   HeatmapRange range;
@@ -84,6 +86,23 @@ HeatmapRange write_heatmap(const std::vector<uint32_t>& values, uint32_t width, 
   }
   write_atomically(path, image);
   return range;
+}
+
+FloatImage difference_map(const FrameImages& test, const FrameImages& reference) {
+  if (test.width != reference.width || test.height != reference.height)
+    throw Error("difference map: the frames' sizes differ");
+  FloatImage image{test.width, test.height, {"R", "G", "B"}, {}};
+  image.pixels.reserve(test.color.size() * 3);
+  for (size_t i = 0; i < test.color.size(); ++i) {
+    const glm::vec3 error = glm::abs(glm::vec3(test.color[i]) - glm::vec3(reference.color[i]));
+    const glm::vec3 c = colour_map(std::max({error.x, error.y, error.z}) / kDifferenceMapTop);
+    image.pixels.insert(image.pixels.end(), {c.x, c.y, c.z});
+  }
+  return image;
+}
+
+void write_difference_map(const FrameImages& test, const FrameImages& reference, const fs::path& path) {
+  write_atomically(path, difference_map(test, reference));
 }
 
 void write_aov_image(const FrameImages& images, const fs::path& path) {

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   sdfbench::register_table_command(app);
   sdfbench::register_sweep_command(app);
   sdfbench::register_merge_command(app);
+  sdfbench::register_report_command(app);
   if (argc > 1 && argv[1][0] != '-') {  // CLI11 would only say "A subcommand is required"
     std::string known;
     bool found = false;

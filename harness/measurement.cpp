@@ -14,14 +14,17 @@
 
 
 namespace sdfbench {
-namespace {
 
-std::string number(double v) {
+std::string csv_number(double v) {
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", v);
   return text;
 }
+
+namespace {
+
+std::string number(double v) { return csv_number(v); }
 std::string number(const std::optional<double>& v) { return v ? number(*v) : ""; }
 
 // Everything configuration_fields() fills: what was asked for, not what happened (frames, the
@@ -52,7 +55,7 @@ const std::vector<std::string>& measurement_columns() {
       "requested_device", "whitted_passes", "validate", "frames", "clock", "ms_median", "ms_min", "ms_max",
       "ms_wall_median", "fps", "mrays_per_s", "rays_per_pixel", "steps_per_ray", "instance_evals_per_ray",
       "triangle_evals_per_ray", "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray", "field_samples_per_ray", "prepare_ms", "build_ms", "structure_bytes", "backend_resolved", "check_size", "hit_agreement",
-      "id_agreement", "psnr", "depth_p99", "depth_p99_voxels", "agreement", "budget_cut", "load_avg", "cpu_steal_pct", "cpu_other_pct", "busy", "device", "driver", "embree", "cpu", "threads", "commit"});
+      "id_agreement", "psnr", "depth_p99", "depth_p99_voxels", "agreement", "budget_cut", "load_avg", "cpu_steal_pct", "cpu_other_pct", "busy", "frame_image", "reference_image", "diff_image", "device", "driver", "embree", "cpu", "threads", "commit"});
   return columns;
 }
 
@@ -69,7 +72,7 @@ std::vector<std::string> to_csv_fields(const Measurement& m) {
           number(m.aabb_tests_per_ray), number(m.triangle_tests_per_ray), number(m.out_of_steps_per_ray), number(m.field_samples_per_ray),
           number(m.prepare_ms), number(m.build_ms), number(m.structure_bytes), m.backend_resolved, m.check_size, number(m.hit_agreement),
           number(m.id_agreement), number(m.psnr), number(m.depth_p99), number(m.depth_p99_voxels), m.agreement, m.budget_cut ? "1" : "0",
-          number(m.load_avg), number(m.cpu_steal_pct), number(m.cpu_other_pct), m.busy ? (*m.busy ? "1" : "0") : "", m.device, m.driver, m.embree,
+          number(m.load_avg), number(m.cpu_steal_pct), number(m.cpu_other_pct), m.busy ? (*m.busy ? "1" : "0") : "", m.frame_image, m.reference_image, m.diff_image, m.device, m.driver, m.embree,
           m.cpu, std::to_string(m.threads), m.commit};
   const std::vector<std::string>& columns = measurement_columns();
   auto at = fields.begin() + (std::find(columns.begin(), columns.end(), "storage_tables") - columns.begin() + 1);

@@ -59,6 +59,9 @@ struct Measurement {
   // how busy the machine was over the timed frames (util/machine_load.h); empty where /proc is unreadable
   std::optional<double> load_avg, cpu_steal_pct, cpu_other_pct;
   std::optional<bool> busy;
+  // the check images kept for the row (--keep-images): the backend's frame, the reference's and
+  // their difference map, PNG, relative to the CSV's folder (to the working folder without --csv)
+  std::string frame_image, reference_image, diff_image;
   // where
   std::string device, driver, cpu;
   std::string embree;  // Embree's version ("3.13.5", "4.3.3"): the reference backend and the bvh builder
@@ -67,6 +70,8 @@ struct Measurement {
 };
 
 const std::vector<std::string>& measurement_columns();
+// A number as the CSV writes it: 6 significant digits, "inf" and "-inf".
+std::string csv_number(double v);
 std::vector<std::string> to_csv_fields(const Measurement& m);
 
 // The columns that identify a configuration: every parameter that changes a measurement, so a

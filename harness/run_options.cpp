@@ -7,6 +7,7 @@
 #include "harness/markdown_report.h"
 #include "harness/thesis_tables.h"
 #include "util/atomic_file.h"
+#include "util/error.h"
 
 namespace sdfbench {
 
@@ -27,6 +28,10 @@ void add_run_options(CLI::App& command, RunOptions& o) {
       ->capture_default_str()->group(method);
   command.add_option("--csv", o.csv, "write one row per measurement (rewritten atomically after every row)")->group(out);
   command.add_option("--markdown", o.markdown, "write the markdown tables at the end")->group(out);
+  command.add_option("--keep-images", o.keep_images,
+                     "keep each row's check images in this folder (created if missing): the backend's frame, the "
+                     "reference's and their difference map, PNG at --check-size; the CSV names them (for `sdfbench report`)")
+      ->group(out);
   command.add_option("--shard", o.shard, "run only the K-th of N slices of the configurations (round robin), e.g. 2/4")
       ->capture_default_str()->group(out);
   command.add_flag("--resume", o.resume, "keep the rows already in --csv and run only the missing configurations")->group(out);
@@ -38,16 +43,32 @@ void write_markdown(const std::string& path, const CsvTable& rows) {
   write_file_atomically(path, std::as_bytes(std::span(text.data(), text.size())));
 }
 
+void prepare_image_folder(const std::filesystem::path& dir, const char* what) {
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(dir, ec);
+  if (std::filesystem::exists(st) && !std::filesystem::is_directory(st))
+    throw Error(std::string(what) + " '" + dir.string() + "' exists and is not a folder");
+  if (!std::filesystem::exists(st) && (std::filesystem::create_directories(dir, ec), ec))
+    throw Error(std::string(what) + " '" + dir.string() + "': cannot create the folder: " + ec.message());
+  check_output_path(dir / "sdfbench-check.png", what);  // writable: fails now, not after the first row
+}
+
 void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& options, const std::vector<NamedPath>& inputs) {
   const PlanOptions plan_options = options.plan();
   if (!options.markdown.empty()) check_output_path(options.markdown, "--markdown");
   check_distinct_outputs({{"--csv", options.csv}, {"--markdown", options.markdown},
                           {"--cache", plan.empty() ? std::string() : plan.front().options.cache.path}},
                          inputs);
+  RunOptions run = options;  // the kept images' folder, made ready before the first row
+  if (!options.keep_images.empty()) {
+    prepare_image_folder(options.keep_images, "--keep-images");
+    run.settings.keep_images = options.keep_images;
+    if (!options.csv.empty()) run.settings.images_base = std::filesystem::path(options.csv).parent_path();
+  }
   std::cerr << plan.size() << " configurations";
   if (plan_options.shard.count > 1) std::cerr << " (this is shard " << plan_options.shard.index << "/" << plan_options.shard.count << ")";
   std::cerr << "\n";
-  BenchmarkRunner runner(options.settings);
+  BenchmarkRunner runner(run.settings);
   const CsvTable rows = run_plan(plan, runner, plan_options);
   write_markdown(options.markdown, rows);
   std::cout << "\n" << markdown_report(rows, ThesisTables::load_default());

@@ -13,7 +13,7 @@ namespace sdfbench {
 
 struct RunOptions {
   BenchSettings settings;
-  std::string check_size = "320x180", shard = "1/1", csv, markdown;
+  std::string check_size = "320x180", shard = "1/1", csv, markdown, keep_images;
   bool resume = false;
   PlanOptions plan() const;  // parses --shard
 };
@@ -22,6 +22,10 @@ void add_run_options(CLI::App& command, RunOptions& options);
 
 // Writes the markdown report of `rows` (with the thesis' values) atomically, if a path was given.
 void write_markdown(const std::string& path, const CsvTable& rows);
+
+// Makes `dir` a writable folder for kept images (created with its parents if missing); throws
+// Error naming `what` when something else is in its place or it cannot be written.
+void prepare_image_folder(const std::filesystem::path& dir, const char* what);
 
 // Runs `plan` as `options` say (shard, resume, CSV), then writes and prints the markdown report.
 // The outputs (--csv, --markdown, --cache) are checked first against each other and `inputs`

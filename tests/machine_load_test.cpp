@@ -28,9 +28,13 @@ TEST(MachineLoad, TheMeterReadsProcAndTheFlagFollowsItsLimits) {
   EXPECT_GE(load->other_pct, 0.0);
   EXPECT_LE(load->other_pct + load->steal_pct, 100.0 + 1e-9);
   MachineLoad busy;
+  busy.window_cpu_s = kMinJudgedCpuSeconds;
   busy.other_pct = kBusyOtherPct + 1.0;
   EXPECT_TRUE(busy.busy(2));
+  busy.window_cpu_s = kMinJudgedCpuSeconds / 2;  // a few clock ticks: the shares are noise
+  EXPECT_FALSE(busy.busy(2));
   busy = MachineLoad{};
+  busy.window_cpu_s = kMinJudgedCpuSeconds;
   busy.steal_pct = kBusyStealPct + 1.0;
   EXPECT_TRUE(busy.busy(2));
   busy = MachineLoad{};
@@ -48,7 +52,7 @@ TEST(MachineLoad, ATableTimedOnABusyMachineIsFlagged) {
   const auto csv = dir.path() / "busy.csv", md = dir.path() / "busy.md";
   const std::string table = std::string(SDFBENCH_BINARY) +
                             " table --table 6.3 --mode primary --meshes sphere --objects 1 --backends embree,bvh "
-                            "--size 64x36 --check-size 32x18 --frames 30 --warmup 1 --budget-s 5 --csv " +
+                            "--size 320x180 --check-size 32x18 --frames 100 --warmup 1 --budget-s 5 --csv " +
                             csv.string() + " --markdown " + md.string();
   const test::CommandResult r = test::run_shell(with_spinners(table), 120);
   ASSERT_EQ(r.exit_code, 0) << r.output;

@@ -1,5 +1,7 @@
 #include "util/machine_load.h"
 
+#include <unistd.h>
+
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -7,7 +9,8 @@
 namespace sdfbench {
 
 bool MachineLoad::busy(unsigned cores) const {
-  return steal_pct > kBusyStealPct || other_pct > kBusyOtherPct || load_avg > 1.5 * static_cast<double>(cores);
+  const bool judged = window_cpu_s >= kMinJudgedCpuSeconds;
+  return (judged && (steal_pct > kBusyStealPct || other_pct > kBusyOtherPct)) || load_avg > 1.5 * static_cast<double>(cores);
 }
 
 LoadMeter::LoadMeter() : start_(read_ticks()) {}
@@ -48,6 +51,7 @@ std::optional<MachineLoad> LoadMeter::stop() const {
   if (!start_ || !end || !(loadavg >> load.load_avg)) return std::nullopt;
   const double total = static_cast<double>(end->total - start_->total);
   if (total > 0.0) {
+    load.window_cpu_s = total / static_cast<double>(sysconf(_SC_CLK_TCK));
     load.steal_pct = 100.0 * static_cast<double>(end->steal - start_->steal) / total;
     const double busy = static_cast<double>(end->busy - start_->busy), self = static_cast<double>(end->self - start_->self);
     load.other_pct = busy > self ? 100.0 * (busy - self) / total : 0.0;

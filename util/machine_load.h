@@ -12,12 +12,16 @@ struct MachineLoad {
   double load_avg = 0.0;   // /proc/loadavg, 1 minute, at the interval's end
   double steal_pct = 0.0;  // CPU time stolen by the hypervisor, % of all CPUs' time over the interval
   double other_pct = 0.0;  // CPU time used by other processes, % of all CPUs' time over the interval
-  // Busy: steal above kBusyStealPct, other processes above kBusyOtherPct, or a load average above
-  // 1.5x the core count (this process alone accounts for up to one runnable thread per core).
+  double window_cpu_s = 0.0;  // the interval's length summed over all CPUs (what the shares divide by)
+  // Busy: a load average above 1.5x the core count (this process alone accounts for up to one
+  // runnable thread per core), or, over a window of at least kMinJudgedCpuSeconds, steal above
+  // kBusyStealPct or other processes above kBusyOtherPct. /proc counts in clock ticks (10 ms), so
+  // in a shorter window one tick of a daemon is already tens of percent: not a busy machine.
   bool busy(unsigned cores) const;
 };
 inline constexpr double kBusyStealPct = 5.0;
 inline constexpr double kBusyOtherPct = 10.0;
+inline constexpr double kMinJudgedCpuSeconds = 0.5;
 
 // Starts measuring when made; stop() gives the interval's load, or nothing where /proc cannot be
 // read (not Linux, a sandbox): the row's load columns stay empty then.

@@ -1,0 +1,324 @@
+#include "harness/html_report.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+#include <sstream>
+
+#include "harness/measurement.h"
+
+namespace sdfbench {
+namespace {
+
+std::string escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// A path as an href: each byte outside the unreserved set and '/' percent-encoded.
+std::string href(const std::string& path) {
+  static const char* hex = "0123456789ABCDEF";
+  std::string out;
+  for (unsigned char c : path) {
+    if (std::isalnum(c) || c == '/' || c == '.' || c == '-' || c == '_' || c == '~') out += static_cast<char>(c);
+    else out += {'%', hex[c >> 4], hex[c & 15]};
+  }
+  return out;
+}
+
+std::string fixed(double v, int digits) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", digits, v);
+  return text;
+}
+
+std::string fps_text(double fps) { return fixed(fps, fps >= 100 ? 0 : fps >= 10 ? 1 : fps >= 1 ? 2 : 3); }
+
+// A row read by column name; a column an older CSV lacks reads as empty.
+struct Row {
+  const CsvTable* table;
+  size_t index;
+  const std::string& operator[](const std::string& column) const {
+    static const std::string none;
+    return table->has_column(column) ? table->rows[index][table->column(column)] : none;
+  }
+  double number(const std::string& column) const { return std::atof((*this)[column].c_str()); }
+  bool starts(const std::string& prefix) const { return (*this)["agreement"].rfind(prefix, 0) == 0; }
+};
+
+// The row's flags as the markdown writes them, and whether any makes its figures invalid.
+struct Flags {
+  std::string marks, why;
+  bool bad = false, warn = false;
+};
+
+Flags flags_of(const Row& r, const RowImages& images) {
+  Flags f;
+  auto add = [&](const std::string& mark, const std::string& why, bool bad) {
+    f.marks += (f.marks.empty() ? "" : " ") + mark;
+    f.why += (f.why.empty() ? "" : "; ") + why;
+    (bad ? f.bad : f.warn) = true;
+  };
+  if (r.starts("ERROR")) add("ERROR", "the configuration failed", true);
+  if (r.starts("DISAGREE")) add("✗", "images disagree with the reference", true);
+  if (r.starts("TRUNCATED")) add("✂", "cut short by a loop limit: image and FPS invalid", true);
+  if (r["agreement"].find("validation messages") != std::string::npos) add("V", "Vulkan validation messages", true);
+  if (r["budget_cut"] == "1") add("†", "the time budget cut the run (fewer frames than asked)", false);
+  if (r["busy"] == "1") add("‡", "timed on a busy machine", false);
+  if (images.mismatch) add("≠", "re-rendered images are not the row's (agreement figures differ)", true);
+  return f;
+}
+
+std::string distinct(const CsvTable& t, const std::string& column) {
+  if (!t.has_column(column)) return "(not recorded)";
+  std::vector<std::string> values;
+  for (const auto& row : t.rows) {
+    const std::string& v = row[t.column(column)];
+    if (!v.empty() && std::find(values.begin(), values.end(), v) == values.end()) values.push_back(v);
+  }
+  std::string text;
+  for (size_t i = 0; i < values.size() && i < 6; ++i) text += (i ? ", " : "") + values[i];
+  if (values.size() > 6) text += ", ... (" + std::to_string(values.size()) + " values)";
+  return text.empty() ? "–" : text;
+}
+
+std::string sizes_of(const CsvTable& t, const std::vector<size_t>& rows) {
+  std::set<std::string> sizes;
+  for (size_t i : rows) sizes.insert(Row{&t, i}["width"] + "x" + Row{&t, i}["height"]);
+  std::string text;
+  for (const std::string& s : sizes) text += (text.empty() ? "" : ", ") + s;
+  return text;
+}
+
+std::string load_summary(const CsvTable& t) {
+  if (!t.has_column("load_avg")) return "not recorded (a CSV from before the load columns)";
+  double lo = 1e30, hi = 0, steal = 0, other = 0;
+  size_t measured = 0, busy = 0;
+  for (size_t i = 0; i < t.rows.size(); ++i) {
+    const Row r{&t, i};
+    if (r["load_avg"].empty()) continue;
+    ++measured;
+    lo = std::min(lo, r.number("load_avg"));
+    hi = std::max(hi, r.number("load_avg"));
+    steal = std::max(steal, r.number("cpu_steal_pct"));
+    other = std::max(other, r.number("cpu_other_pct"));
+    busy += r["busy"] == "1";
+  }
+  if (!measured) return "not measured";
+  return "load average " + fixed(lo, 2) + "–" + fixed(hi, 2) + ", CPU steal up to " + fixed(steal, 1) +
+         " %, other processes up to " + fixed(other, 1) + " % of the CPUs; " + std::to_string(busy) + " of " +
+         std::to_string(measured) + " rows timed on a busy machine (‡)";
+}
+
+void environment(std::ostringstream& out, const ReportFile& file) {
+  const CsvTable& t = file.table;
+  out << "<table class=\"env\">\n";
+  auto line = [&](const std::string& name, const std::string& value) {
+    out << "<tr><th>" << escape(name) << "</th><td>" << escape(value) << "</td></tr>\n";
+  };
+  line("rows", std::to_string(t.rows.size()));
+  line("device", distinct(t, "device"));
+  line("driver", distinct(t, "driver"));
+  line("CPU", distinct(t, "cpu"));
+  line("threads", distinct(t, "threads"));
+  line("Embree", distinct(t, "embree"));
+  line("commit", distinct(t, "commit"));
+  line("modes", distinct(t, "mode"));
+  std::vector<size_t> all(t.rows.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  line("frame size", sizes_of(t, all));
+  line("check size (agreement)", distinct(t, "check_size") + " against " + distinct(t, "reference"));
+  line("frames", distinct(t, "requested_frames") + " timed after " + distinct(t, "warmup") + " warm-up, clock " + distinct(t, "clock"));
+  line("machine load", load_summary(t));
+  out << "</table>\n";
+}
+
+// (appended, not "f" + std::to_string(...): GCC 12 gives a false -Wrestrict there, GCC bug 105651)
+std::string anchor(size_t file, size_t row) { return std::string("f").append(std::to_string(file)).append("r").append(std::to_string(row)); }
+
+void thesis_tables(std::ostringstream& out, const std::vector<ReportFile>& files, const ThesisTables& thesis) {
+  bool any = false;
+  for (size_t f = 0; f < files.size(); ++f) {
+    const CsvTable& t = files[f].table;
+    for (const ThesisTableConfig& config : thesis_table_configs()) {
+      std::vector<size_t> rows;
+      for (size_t i = 0; i < t.rows.size(); ++i)
+        if (Row{&t, i}["table"] == config.id) rows.push_back(i);
+      if (rows.empty()) continue;
+      if (!any) out << "<h2 id=\"thesis\">The thesis' tables</h2>\n";
+      any = true;
+      std::vector<std::string> meshes;
+      std::set<size_t> counts;
+      for (size_t i : rows) {
+        const Row r{&t, i};
+        if (std::find(meshes.begin(), meshes.end(), r["mesh"]) == meshes.end()) meshes.push_back(r["mesh"]);
+        counts.insert(static_cast<size_t>(r.number("objects")));
+      }
+      const std::string sizes = sizes_of(t, rows);
+      out << "<h3>Table " << config.id << ": " << escape(config.backend) << ", " << to_string(config.mode) << " ("
+          << escape(t.source) << ")</h3>\n<p>" << escape(config.description) << ". Each cell: FPS measured here ("
+          << escape(distinct(t, "device")) << ", " << sizes << "), the thesis' FPS (GTX 1070, 1280x720) and ours / the thesis'."
+          << (sizes != "1280x720" ? " <strong>Other resolution than the thesis': FPS are not comparable, only the trends.</strong>" : "")
+          << " Another device than the thesis' GPU: the ratio says how far this device is, not the method.</p>\n"
+          << "<table class=\"grid\"><tr><th>mesh \\ objects</th>";
+      for (size_t c : counts) out << "<th>" << c << "</th>";
+      out << "</tr>\n";
+      for (const std::string& mesh : meshes) {
+        out << "<tr><th>" << escape(mesh) << "</th>";
+        for (size_t c : counts) {
+          const size_t* found = nullptr;
+          for (const size_t& i : rows)
+            if (Row{&t, i}["mesh"] == mesh && static_cast<size_t>(Row{&t, i}.number("objects")) == c) found = &i;
+          if (!found) { out << "<td>–</td>"; continue; }
+          const Row r{&t, *found};
+          const Flags flags = flags_of(r, files[f].images[*found]);
+          const std::optional<ThesisValue> v = thesis.find(config.id, mesh, c);
+          const double fps = r.number("fps");
+          out << "<td class=\"" << (flags.bad ? "bad" : flags.warn ? "warn" : "") << "\"><a href=\"#" << anchor(f, *found)
+              << "\"><b>" << (r.starts("ERROR") ? "ERROR" : fps_text(fps)) << "</b></a>" << (flags.marks.empty() ? "" : " " + flags.marks);
+          if (v) {
+            out << "<br><span class=\"thesis\">thesis " << (v->upper_bound ? "&lt;1" : fps_text(v->fps)) << "</span><br>"
+                << (v->upper_bound ? "&gt;" : "") << fixed(fps / v->fps, fps / v->fps >= 10 ? 0 : 2) << "x";
+          }
+          out << "</td>";
+        }
+        out << "</tr>\n";
+      }
+      out << "</table>\n";
+    }
+  }
+}
+
+// Key columns (beyond scene, backend, mode and size) whose values differ between the file's rows:
+// a sweep's axes, a table's per-backend settings.
+std::vector<std::string> varying_columns(const CsvTable& t) {
+  static const std::set<std::string> shown = {"table", "scene", "backend", "mode", "width", "height"};
+  std::vector<std::string> varying;
+  for (const std::string& name : configuration_key_columns()) {
+    if (shown.count(name) || !t.has_column(name)) continue;
+    std::set<std::string> values;  // an empty field is a column of another backend's family
+    for (const auto& row : t.rows)
+      if (!row[t.column(name)].empty()) values.insert(row[t.column(name)]);
+    if (values.size() > 1) varying.push_back(name);
+  }
+  return varying;
+}
+
+std::string cell(const Row& r, const std::string& column, int digits) {
+  return r[column].empty() ? "–" : r[column] == "inf" ? "∞" : fixed(r.number(column), digits);
+}
+
+void thumbnail(std::ostringstream& out, const std::string& path, const std::string& what, const Row& r) {
+  const std::string alt = what + ": " + r["scene"] + ", " + r["backend"] + ", " + r["mode"];
+  out << "<a href=\"" << href(path) << "\"><img src=\"" << href(path) << "\" width=\"160\" alt=\"" << escape(alt) << "\" title=\""
+      << escape(what) << "\"></a>";
+}
+
+void rows_table(std::ostringstream& out, const ReportFile& file, size_t f) {
+  const CsvTable& t = file.table;
+  const std::vector<std::string> varying = varying_columns(t);
+  out << "<table class=\"rows\"><tr><th>#</th><th>configuration</th><th>FPS</th><th>Mrays/s</th><th>build ms</th><th>MB</th>"
+         "<th>hit %</th><th>id %</th><th>depth p99</th><th>PSNR dB</th><th>agreement</th><th>load</th>"
+         "<th>frame · reference · difference</th></tr>\n";
+  for (size_t i = 0; i < t.rows.size(); ++i) {
+    const Row r{&t, i};
+    const RowImages& images = file.images[i];
+    const Flags flags = flags_of(r, images);
+    out << "<tr id=\"" << anchor(f, i) << "\" class=\"" << (flags.bad ? "bad" : flags.warn ? "warn" : "") << "\"><td>"
+        << escape(r["run_index"]) << "</td><td><b>" << escape(r["backend"]) << "</b> " << escape(r["mode"]) << "<br>"
+        << escape(r["scene"]) << ", " << escape(r["width"]) << "x" << escape(r["height"])
+        << (r["table"].empty() ? "" : ", table " + escape(r["table"]));
+    for (const std::string& name : varying)
+      if (!r[name].empty()) out << "<br><span class=\"param\">" << escape(name) << "=" << escape(r[name]) << "</span>";
+    if (!r["backend_resolved"].empty()) out << "<br><span class=\"param\">" << escape(r["backend_resolved"]) << "</span>";
+    const std::string voxels = r["depth_p99_voxels"].empty() ? "" : "<br>" + cell(r, "depth_p99_voxels", 3) + " voxels";
+    out << "</td><td>" << (r.starts("ERROR") ? "ERROR" : fps_text(r.number("fps"))) << (flags.marks.empty() ? "" : " " + flags.marks)
+        << "</td><td>" << cell(r, "mrays_per_s", 3) << "</td><td>" << cell(r, "build_ms", 0) << "</td><td>"
+        << (r["structure_bytes"].empty() ? "–" : fixed(r.number("structure_bytes") / 1e6, 1)) << "</td><td>"
+        << cell(r, "hit_agreement", 2) << "</td><td>" << cell(r, "id_agreement", 2) << "</td><td>"
+        << (r["depth_p99"].empty() ? "–" : escape(r["depth_p99"])) << voxels << "</td><td>" << cell(r, "psnr", 1) << "</td><td>"
+        << escape(r["agreement"]) << (flags.why.empty() ? "" : "<br><span class=\"why\">" + escape(flags.why) + "</span>")
+        << "</td><td>" << (r["load_avg"].empty() ? "–" : cell(r, "load_avg", 2) + "<br>steal " + cell(r, "cpu_steal_pct", 1) +
+                                                             " %<br>other " + cell(r, "cpu_other_pct", 1) + " %")
+        << "</td><td class=\"images\">";
+    if (!images.frame.empty()) {
+      thumbnail(out, images.frame, r["backend"] + "'s frame", r);
+      thumbnail(out, images.reference, "the reference's frame (" + r["reference"] + ")", r);
+      thumbnail(out, images.diff, "difference map", r);
+    }
+    if (!images.note.empty()) out << "<br><span class=\"note\">" << escape(images.note) << "</span>";
+    out << "</td></tr>\n";
+  }
+  out << "</table>\n";
+}
+
+const char* kStyle = R"(body{font:14px/1.4 system-ui,sans-serif;margin:1.5em;color:#222}
+h1{margin-top:0}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:1.6em}
+table{border-collapse:collapse;margin:.6em 0}th,td{border:1px solid #ddd;padding:3px 6px;vertical-align:top}
+th{background:#f3f3f3;text-align:left}table.env th{width:13em}table.grid td{text-align:right;min-width:6em}
+table.rows td:nth-child(n+3):nth-child(-n+10){text-align:right}
+tr.bad,td.bad{background:#fbe0e0}tr.warn,td.warn{background:#fff6d6}
+.thesis,.param,.note,.why{color:#666;font-size:12px}.why{color:#a00}
+td.images{white-space:nowrap}td.images img{margin-right:3px;border:1px solid #999;image-rendering:auto}
+figure{display:inline-block;margin:0 1em 1em 0;vertical-align:top}figure img{max-width:640px;border:1px solid #ccc}
+figcaption{font-size:12px;color:#555})";
+
+}  // namespace
+
+std::string html_report(const std::vector<ReportFile>& files, const std::vector<ReportPlot>& plots, const ThesisTables& thesis,
+                        const std::string& generator) {
+  std::ostringstream out;
+  out << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>sdfbench report</title>\n<style>" << kStyle
+      << "</style></head><body>\n<h1>sdfbench report</h1>\n<p>Written by sdfbench " << escape(generator) << " from ";
+  for (size_t f = 0; f < files.size(); ++f) out << (f ? ", " : "") << "<a href=\"#file" << f << "\">" << escape(files[f].table.source) << "</a>";
+  out << ". Every row's images were checked against the reference backend at the check size before its figures were "
+         "reported; the thumbnails are those check images (click for full size). The difference map is each pixel's "
+         "largest channel error, dark violet 0 to yellow 0.1 and above (the check counts a pixel failed from 0.05).</p>\n"
+         "<p>Flags: ✗ images disagree with the reference, ✂ cut short by a loop limit (image and FPS invalid), V Vulkan "
+         "validation messages, ERROR the configuration failed, ≠ re-rendered images whose figures are not the row's "
+         "(<span class=\"bad\">red rows</span>); † the time budget cut the run, ‡ timed on a busy machine (load average "
+         "above 1.5x the cores, CPU steal above 5 % or other processes above 10 %) (<span class=\"warn\">yellow rows</span>).</p>\n";
+  // Flagged rows first: what a reader must not miss.
+  std::ostringstream flagged;
+  size_t flagged_count = 0;
+  for (size_t f = 0; f < files.size(); ++f)
+    for (size_t i = 0; i < files[f].table.rows.size(); ++i) {
+      const Row r{&files[f].table, i};
+      const Flags flags = flags_of(r, files[f].images[i]);
+      if (flags.marks.empty()) continue;
+      ++flagged_count;
+      flagged << "<li class=\"" << (flags.bad ? "bad" : "warn") << "\"><a href=\"#" << anchor(f, i) << "\">"
+              << escape(files[f].table.source) << " #" << escape(r["run_index"]) << "</a> " << escape(r["backend"]) << " "
+              << escape(r["mode"]) << " " << escape(r["scene"]) << ": " << flags.marks << " " << escape(flags.why) << "</li>\n";
+    }
+  out << "<h2>Flagged rows</h2>\n";
+  if (flagged_count) out << "<ul>\n" << flagged.str() << "</ul>\n";
+  else out << "<p>None: every row agrees with the reference, ran its frames and was timed on a quiet machine.</p>\n";
+  thesis_tables(out, files, thesis);
+  if (!plots.empty()) {
+    out << "<h2 id=\"plots\">Plots</h2>\n";
+    for (const ReportPlot& p : plots)
+      out << "<figure><a href=\"" << href(p.href) << "\"><img src=\"" << href(p.href) << "\" alt=\"" << escape(p.caption)
+          << "\"></a><figcaption>" << escape(p.caption) << "</figcaption></figure>\n";
+  }
+  for (size_t f = 0; f < files.size(); ++f) {
+    out << "<h2 id=\"file" << f << "\">" << escape(files[f].table.source) << "</h2>\n";
+    environment(out, files[f]);
+    rows_table(out, files[f], f);
+  }
+  out << "</body></html>\n";
+  return out.str();
+}
+
+}  // namespace sdfbench
