@@ -189,7 +189,7 @@ void thesis_tables(std::ostringstream& out, const std::vector<ReportFile>& files
               << "\"><b>" << (r.starts("ERROR") ? "ERROR" : fps_text(fps)) << "</b></a>" << (flags.marks.empty() ? "" : " " + flags.marks);
           if (v) {
             out << "<br><span class=\"thesis\">thesis " << (v->upper_bound ? "&lt;1" : fps_text(v->fps)) << "</span><br>"
-                << (v->upper_bound ? "&gt;" : "") << fixed(fps / v->fps, fps / v->fps >= 10 ? 0 : 2) << "x";
+                << (v->upper_bound ? "&gt;" : "") << fixed(fps / v->fps, fps / v->fps >= 10 ? 0 : 2) << "x the thesis'";
           }
           out << "</td>";
         }
@@ -221,7 +221,7 @@ std::string cell(const Row& r, const std::string& column, int digits) {
 
 void thumbnail(std::ostringstream& out, const std::string& path, const std::string& what, const Row& r) {
   const std::string alt = what + ": " + r["scene"] + ", " + r["backend"] + ", " + r["mode"];
-  out << "<a href=\"" << href(path) << "\"><img src=\"" << href(path) << "\" width=\"160\" alt=\"" << escape(alt) << "\" title=\""
+  out << "<a href=\"" << href(path) << "\"><img src=\"" << href(path) << "\" width=\"128\" alt=\"" << escape(alt) << "\" title=\""
       << escape(what) << "\"></a>";
 }
 

@@ -19,6 +19,7 @@ packages=(
   libbenchmark-dev libgtest-dev
   libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libmeshoptimizer-dev libopenmesh-dev
   python3-matplotlib
+  chromium
 )
 min_mesa_version="25"
 backports_sources=/etc/apt/sources.list.d/sdfbench-bookworm-backports.sources

@@ -1,0 +1,218 @@
+// `table --keep-images` and `sdfbench report`: the kept images are the row's check frames, the
+// page links every row to them, --render-missing reproduces a row's figures (and says so when
+// it cannot), a CSV row reads back as the configuration that wrote it, and bad input is one error
+// line. The page in a real browser: tests/report_browser_test.sh.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <set>
+
+#include "harness/benchmark_runner.h"
+#include "harness/csv.h"
+#include "harness/measurement.h"
+#include "harness/row_configuration.h"
+#include "test_support.h"
+#include "util/error.h"
+
+namespace sdfbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// Width, height and pixels (RGB floats) of a PNG, read by OpenImageIO.
+struct Png {
+  int width = 0, height = 0;
+  std::vector<float> rgb;
+};
+Png read_png(const fs::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  EXPECT_TRUE(in) << path;
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  Png png{spec.width, spec.height, std::vector<float>(size_t(spec.width) * spec.height * 3)};
+  in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, png.rgb.data());
+  return png;
+}
+
+// A tiny table 6.3 with kept images: embree (the reference) and tri-aabb (the table's own
+// backend), shadow mode, sphere:1 and sphere:10.
+struct KeptTable {
+  test::TempDir dir;
+  fs::path csv = dir.path() / "out" / "t.csv";
+  CsvTable rows;
+  KeptTable() {
+    fs::create_directories(csv.parent_path());
+    const test::CommandResult r = test::run_sdfbench(
+        "table --table 6.3 --meshes sphere --objects 1,10 --backends embree,tri-aabb --size 48x27 --check-size 48x27 "
+        "--frames 1 --warmup 0 --csv " + csv.string() + " --keep-images " + (dir.path() / "out" / "kept").string());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    rows = read_csv(csv);
+  }
+  std::string field(size_t row, const char* column) const { return rows.rows.at(row)[rows.column(column)]; }
+};
+
+TEST(KeepImages, EveryRowNamesItsThreeCheckImagesBesideTheCsv) {
+  KeptTable t;
+  ASSERT_EQ(t.rows.rows.size(), 4u);
+  std::set<std::string> frames;
+  for (size_t r = 0; r < t.rows.rows.size(); ++r) {
+    for (const char* column : {"frame_image", "reference_image", "diff_image"}) {
+      const std::string path = t.field(r, column);
+      ASSERT_EQ(path.rfind("kept/", 0), 0u) << column << " '" << path << "' is not relative to the CSV's folder";
+      const Png png = read_png(t.csv.parent_path() / path);
+      EXPECT_EQ(png.width, 48);
+      EXPECT_EQ(png.height, 27);
+    }
+    frames.insert(t.field(r, "frame_image"));
+  }
+  EXPECT_EQ(frames.size(), 4u) << "each row keeps its own frame";
+  // The reference row's frame is the reference, its difference map uniformly the map's zero colour;
+  // tri-aabb's frame is its own render, not a copy of the reference's file.
+  const Png ref = read_png(t.csv.parent_path() / t.field(0, "frame_image"));
+  const Png ref_again = read_png(t.csv.parent_path() / t.field(1, "reference_image"));
+  EXPECT_EQ(ref.rgb, ref_again.rgb);
+  const Png diff = read_png(t.csv.parent_path() / t.field(0, "diff_image"));
+  for (size_t i = 0; i < diff.rgb.size(); i += 3) ASSERT_EQ(diff.rgb[i], diff.rgb[0]) << "pixel " << i / 3;
+  EXPECT_LT(diff.rgb[0] + diff.rgb[1] + diff.rgb[2], 1.2f) << "zero error is dark";
+}
+
+TEST(Report, LinksEveryRowToItsImagesAndCopiesThemBesideThePage) {
+  KeptTable t;
+  const fs::path page = t.dir.path() / "page" / "r.html";
+  fs::create_directories(page.parent_path());
+  const test::CommandResult r = test::run_sdfbench("report " + t.csv.string() + " --out " + page.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string html = read_text(page);
+  EXPECT_NE(html.find("Table 6.3"), std::string::npos) << "the thesis' table with its values";
+  EXPECT_NE(html.find("thesis "), std::string::npos);
+  const std::regex row_re("<tr id=\"f0r(\\d+)\"");
+  size_t rows = 0;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), row_re); it != std::sregex_iterator(); ++it) ++rows;
+  EXPECT_EQ(rows, 4u);
+  // Every image the page shows is in r_files/ and decodes; the row's frame is byte for byte the kept one.
+  const std::regex img_re("<img src=\"(r_files/[0-9a-f]{16}\\.png)\"");
+  size_t images = 0;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), img_re); it != std::sregex_iterator(); ++it, ++images)
+    EXPECT_EQ(read_png(page.parent_path() / (*it)[1].str()).width, 48) << (*it)[1];
+  EXPECT_EQ(images, 12u);
+  const std::string kept_frame = read_text(t.csv.parent_path() / t.field(1, "frame_image"));
+  bool found = false;
+  for (const fs::directory_entry& e : fs::directory_iterator(page.parent_path() / "r_files")) found |= read_text(e.path()) == kept_frame;
+  EXPECT_TRUE(found) << "tri-aabb's kept frame is on the page";
+}
+
+TEST(Report, RenderMissingReproducesTheRowsFiguresAndFlagsARowItCannot) {
+  test::TempDir dir;
+  const fs::path csv = dir.path() / "t.csv";
+  const test::CommandResult run = test::run_sdfbench(
+      "table --table 6.3 --mode shadow --meshes sphere --objects 10 --backends embree,bvh,sdf-octree --size 48x27 "
+      "--check-size 64x36 --frames 1 --warmup 0 --csv " + csv.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  // The same rows again, one with a PSNR that the frame does not have.
+  CsvTable tampered = read_csv(csv);
+  tampered.rows[2][tampered.column("psnr")] = "12.5";
+  write_csv(dir.path() / "tampered.csv", tampered);
+  const fs::path page = dir.path() / "r.html";
+  const test::CommandResult r = test::run_sdfbench("report " + csv.string() + " " + (dir.path() / "tampered.csv").string() +
+                                                   " --render-missing --out " + page.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("6 re-rendered (1 whose figures differ from the row's)"), std::string::npos) << r.output;
+  const std::string html = read_text(page);
+  size_t equal = 0;
+  for (size_t at = html.find("agreement figures equal the row"); at != std::string::npos; at = html.find("agreement figures equal the row", at + 1)) ++equal;
+  EXPECT_EQ(equal, 3u) << "bvh twice and sdf-octree once reproduce their rows (the reference rows are the reference)";
+  EXPECT_NE(html.find("psnr 12.5 → "), std::string::npos);
+  EXPECT_NE(html.find("<tr id=\"f1r2\" class=\"bad\""), std::string::npos) << "the tampered row is flagged";
+  // Written again, nothing is rendered again: the list of rendered rows is reused.
+  const test::CommandResult again = test::run_sdfbench("report " + csv.string() + " --render-missing --out " + page.string());
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(again.output.find("rendering the check frame"), std::string::npos) << again.output;
+}
+
+TEST(Report, BadInputIsOneErrorLine) {
+  KeptTable t;
+  const fs::path out = t.dir.path() / "r.html";
+  auto expect_error = [](const test::CommandResult& r, const std::string& says) {
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("sdfbench: error: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(says), std::string::npos) << r.output;
+  };
+  expect_error(test::run_sdfbench("report " + t.csv.string() + " --out " + (t.dir.path() / "r.txt").string()), "name it *.html");
+  expect_error(test::run_sdfbench("report " + t.csv.string() + " --out " + out.string() + " --plots " + t.csv.string()),
+               "is not a folder");
+  // A kept image that is gone, or not a PNG: the file, row and column are named.
+  CsvTable rows = t.rows;
+  rows.rows[1][rows.column("diff_image")] = "kept/missing.png";
+  write_csv(t.csv.parent_path() / "gone.csv", rows);
+  expect_error(test::run_sdfbench("report " + (t.csv.parent_path() / "gone.csv").string() + " --out " + out.string()),
+               "gone.csv' row 2: diff_image");
+  rows.rows[1][rows.column("diff_image")] = "t.csv";
+  write_csv(t.csv.parent_path() / "notpng.csv", rows);
+  expect_error(test::run_sdfbench("report " + (t.csv.parent_path() / "notpng.csv").string() + " --out " + out.string()),
+               "is not a PNG image");
+  expect_error(test::run_sdfbench("table --keep-images " + t.csv.string() + " --meshes sphere --objects 1 --backends embree"),
+               "--keep-images");
+  EXPECT_FALSE(fs::exists(out)) << "no page after an error";
+}
+
+// Every configuration a table or sweep writes reads back from its CSV row as itself.
+TEST(RowConfiguration, ARowReadsBackAsTheConfigurationThatWroteIt) {
+  std::vector<BenchConfig> configs(4);
+  configs[0].scene = "thesis:bunny:10";
+  configs[0].backend = "embree";
+  configs[0].size = {64, 36};
+  configs[1] = configs[0];
+  configs[1].backend = "sdf-octree";
+  configs[1].mode = RenderMode::Whitted;
+  configs[1].max_depth = 3;
+  configs[1].options.scene_hash.hash_cell = 5;
+  configs[1].options.hash_cell_given = true;
+  configs[1].options.scene_hash.octree_depth = 2;
+  configs[1].options.scene_hash.lists = sdf::ListRule::Thesis;
+  configs[1].options.mesh_grid.cells_per_extent = 48;
+  configs[1].options.mesh_grid.scale_with_triangles = false;
+  configs[1].options.tracing.hit = sdf::HitMode::thesis;
+  configs[1].options.tracing.over_relax = 1.5f;
+  configs[1].options.tracing.cell_bound = true;
+  configs[1].options.tracing.storage_tables = true;
+  configs[1].options.whitted_passes = true;
+  configs[2] = configs[0];
+  configs[2].backend = "sdf-global";
+  configs[2].mode = RenderMode::Shadow;
+  configs[2].options.params.set("global_voxel", "0.5");
+  configs[2].options.params.set("sdf_format", "f16");
+  configs[2].options.tracing.hit = sdf::HitMode::field;
+  configs[3] = configs[0];
+  configs[3].backend = "sdf-hash";  // hash cell 1 unless given
+  BenchSettings settings;
+  settings.check_size = {80, 45};
+  settings.reference = "embree";
+  CsvTable table;
+  table.columns = measurement_columns();
+  table.source = "configs.csv";
+  for (size_t i = 0; i < configs.size(); ++i) table.rows.push_back(to_csv_fields(configuration_fields(configs[i], i, settings)));
+  for (size_t i = 0; i < configs.size(); ++i) {
+    const RowConfiguration read = row_configuration(table, i);
+    EXPECT_EQ(configuration_key(configuration_fields(read.config, i, settings)), configuration_key(table.rows[i], table.columns))
+        << configs[i].backend;
+    EXPECT_EQ(read.check_size.width, 80u);
+    EXPECT_EQ(read.reference, "embree");
+  }
+  table.rows[1][table.column("octree_depth")] = "two";
+  try {
+    row_configuration(table, 1);
+    ADD_FAILURE() << "a bad field was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'configs.csv' row 2, column octree_depth"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace sdfbench
