@@ -15,7 +15,7 @@ script=$root/harness/scripts/gpu_run.sh
   { tail -20 "$work/log"; fail "gpu_run.sh on lavapipe exited $?"; }
 dir=$(echo "$work"/out/llvmpipe-*)
 [[ -d $dir ]] || fail "no folder named after the device under $work/out: $(ls "$work/out")"
-for f in info.txt agreement.txt tables.csv tables.md tables_command.txt; do [[ -s $dir/$f ]] || fail "$f missing or empty"; done
+for f in info.txt agreement.txt tables.csv tables.md tables_command.txt report.html; do [[ -s $dir/$f ]] || fail "$f missing or empty"; done
 grep -q "Vulkan devices" "$dir/info.txt" || fail "info.txt lacks sdfbench info's device list"
 [[ $(grep -c '^exit 0$' "$dir/agreement.txt") -eq 10 ]] || fail "expected 10 agreeing compares: $(grep '^exit' "$dir/agreement.txt" | sort | uniq -c)"
 grep -q "vk-rt" "$dir/agreement.txt" || fail "vk-rt (supported on lavapipe) left out of the compares"
@@ -32,6 +32,10 @@ grep -q "brick_fetch=sampler" "$dir/brick_fetch.csv" || fail "brick_fetch.csv ha
 rows=$(($(wc -l <"$dir/tables.csv") - 1))
 [[ $rows -eq 16 ]] || fail "tables.csv has $rows rows, expected 16 (sphere x 1,10 objects x 8 backends)"
 grep -q -- "--device lavapipe" "$dir/tables_command.txt" || fail "tables_command.txt does not record the command"
+# The report: every table row on the page with its three kept images.
+[[ $(ls "$dir"/images/*.png | wc -l) -eq 48 ]] || fail "expected 48 kept images (16 rows x 3) in $dir/images"
+[[ $(grep -o '<tr id="f0r[0-9]*"' "$dir/report.html" | wc -l) -eq 16 ]] || fail "report.html does not show the 16 table rows"
+[[ $(grep -o '<img src="report_files/' "$dir/report.html" | wc -l) -ge 48 ]] || fail "report.html lacks the rows' images"
 # Again with --tables-only: no compares, the finished tables kept as they are.
 cp "$dir/tables.csv" "$work/before.csv"
 "$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --out "$work/out" --tables-only \

@@ -149,7 +149,7 @@ fi
 # The tables, under the wall-clock limit (a cut run resumes on the next call).
 echo "gpu_run: tables at $size, ${budget} s per configuration, at most $minutes min" >&2
 table=("$binary" table --size "$size" --budget-s "$budget" --frames "$frames" --device "$device" --resume
-       --csv "$dir/tables.csv" --markdown "$dir/tables.md" "${table_flags[@]}")
+       --csv "$dir/tables.csv" --markdown "$dir/tables.md" --keep-images "$dir/images" "${table_flags[@]}")
 echo "${table[*]}" >"$dir/tables_command.txt"
 status=0
 timeout --signal=INT "${minutes}m" "${table[@]}" || status=$?
@@ -160,6 +160,10 @@ case $status in
   124|130) echo "gpu_run: the tables were cut at $minutes min; run the same command again (with --tables-only) to finish them" >&2; exit 3 ;;
   *) die "the tables failed (exit $status)" ;;
 esac
+# The page of every CSV with each table row's check images beside the reference's.
+reports=("$dir/tables.csv")
+for f in storage_vs_texel brick_fetch; do [[ -f $dir/$f.csv ]] && reports+=("$dir/$f.csv"); done
+"$binary" report "${reports[@]}" --out "$dir/report.html" >/dev/null || die "sdfbench report failed"
 [[ $failed -eq 0 ]] || { echo "gpu_run: some configurations failed (ERROR rows in $dir/tables.csv or the storage sweeps); run it again to retry them" >&2; exit 4; }
 [[ $disagreed -eq 0 ]] || { echo "gpu_run: a compare or a table row disagreed; see $agreement and $dir/tables.md" >&2; exit 2; }
-echo "gpu_run: done: $dir (info.txt, agreement.txt, storage_vs_texel.csv/.md, tables.csv, tables.md)" >&2
+echo "gpu_run: done: $dir (info.txt, agreement.txt, storage_vs_texel.csv/.md, tables.csv, tables.md, report.html)" >&2
