@@ -1,10 +1,12 @@
 // `sdfbench report`: one HTML page (harness/html_report.h) from measurement CSVs, the check
 // images their runs kept (--keep-images) and plots; images go to a folder beside the page.
 #include <algorithm>
-#include <cstring>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <memory>
+#include <optional>
 #include <set>
 
 #include "harness/commands.h"
@@ -12,13 +14,12 @@
 #include "harness/image_output.h"
 #include "harness/measurement.h"
 #include "harness/output_paths.h"
-#include "harness/row_configuration.h"
+#include "harness/image_store.h"
+#include "harness/row_rerender.h"
 #include "harness/run_options.h"
 #include "harness/system_info.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
-#include "util/fnv1a.h"
-#include "util/input_file.h"
 
 namespace sdfbench {
 namespace {
@@ -31,144 +32,17 @@ struct ReportArgs {
   bool render_missing = false;
 };
 
-constexpr uint64_t kMaxImageBytes = uint64_t{64} << 20;
-// In a folder with this file the report owns every PNG: those no page links to any more go.
-constexpr const char* kOwnerMarker = ".sdfbench-report";
-
-// The page's image folder: every image stored once under the digest of its bytes, so a
-// reference shared by many rows (and a frame equal to it) costs its bytes once.
-class ImageStore {
- public:
-  ImageStore(fs::path dir, std::string href_prefix) : dir_(std::move(dir)), prefix_(std::move(href_prefix)) {}
-
-  std::string add(std::span<const std::byte> png) {
-    char name[32];
-    std::snprintf(name, sizeof name, "%016llx.png", static_cast<unsigned long long>(fnv1a64(png)));
-    if (names_.insert(name).second && !fs::exists(dir_ / name)) write_file_atomically(dir_ / name, png);
-    return prefix_ + name;
-  }
-  std::string add(const FloatImage& image) {
-    const std::vector<unsigned char> png = encode_image(image, ImageFormat::png, "report image");
-    return add(std::as_bytes(std::span(png.data(), png.size())));
-  }
-  std::string add_file(const fs::path& path, const std::string& what) {
-    const std::vector<std::byte> bytes = read_input_bytes(path, what, kMaxImageBytes);
-    static const unsigned char magic[] = {0x89, 'P', 'N', 'G'};
-    if (bytes.size() < 4 || std::memcmp(bytes.data(), magic, 4) != 0)
-      throw Error(what + " '" + path.string() + "' is not a PNG image");
-    return add(bytes);
-  }
-  // With the owner marker in the folder: removes the PNGs this page does not link.
-  void remove_unlinked() const {
-    if (!fs::exists(dir_ / kOwnerMarker)) return;
-    for (const fs::directory_entry& e : fs::directory_iterator(dir_))
-      if (e.is_regular_file() && e.path().extension() == ".png" && !names_.count(e.path().filename().string())) fs::remove(e.path());
-  }
-
- private:
-  fs::path dir_;
-  std::string prefix_;
-  std::set<std::string> names_;
-};
-
-// The row's agreement figures as the CSV writes them, against those of a re-rendered frame:
-// empty when equal, else what differs.
-std::string figure_differences(const CsvTable& t, size_t row, const Agreement& g) {
-  std::string differences;
-  auto compare = [&](const char* column, std::optional<double> value) {
-    const std::string ours = value ? csv_number(*value) : "";
-    if (!t.has_column(column)) return;  // an older CSV: the figure was not recorded
-    const std::string& theirs = t.rows[row][t.column(column)];
-    if (ours != theirs) differences += std::string(differences.empty() ? "" : ", ") + column + " " + theirs + " → " + ours;
-  };
-  compare("hit_agreement", g.hit_percent);
-  compare("id_agreement", g.id_percent);
-  compare("psnr", g.psnr);
-  compare("depth_p99", g.depth_p99);
-  compare("depth_p99_voxels", g.depth_p99_voxels);
-  return differences;
+// The page's note for a re-rendered row, and whether it is not the row's (≠).
+RowImages rerendered_images(const CsvTable& t, size_t row, const Rerender& r) {
+  const std::string differences = rerender_differences(t, row, r);
+  const std::string measured_at = t.has_column("commit") ? t.rows[row][t.column("commit")] : std::string("?");
+  return {r.frame, r.reference, r.diff,
+          "re-rendered by sdfbench " + r.sdfbench + " from the row's configuration (measured at " + measured_at + "): " +
+              (r.reference_row ? "the reference itself"
+               : differences.empty() ? "agreement figures equal the row's"
+                                     : "agreement figures differ (" + differences + "): not the row's images"),
+          !differences.empty()};
 }
-
-// Renders the check frames of rows that kept none, one runner per reference and check size.
-// What it rendered is listed in the image folder's kRenderedList, so writing the page again (a
-// CSV added, a plot changed) renders only rows it has not rendered before.
-class MissingImages {
- public:
-  static constexpr const char* kRenderedList = "rendered.csv";
-
-  MissingImages(ImageStore& store, fs::path dir, std::string device) : store_(store), dir_(std::move(dir)), device_(std::move(device)) {
-    list_.columns = {"csv", "key", "frame", "reference", "diff", "note", "mismatch"};
-    if (fs::exists(dir_ / kRenderedList)) {
-      const CsvTable old = read_csv(dir_ / kRenderedList);
-      if (old.columns == list_.columns) previous_ = old;
-    }
-  }
-
-  // A row rendered before (same file, same configuration, its images still there), or nothing.
-  std::optional<RowImages> rendered_before(const CsvTable& t, size_t row) {
-    const std::string key = configuration_key(t.rows[row], t.columns);
-    for (const auto& r : previous_.rows) {
-      if (r[0] != t.source || r[1] != key) continue;
-      const std::string prefix = dir_.filename().string() + "/";
-      for (int i = 2; i <= 4; ++i)
-        if (r[i].rfind(prefix, 0) != 0 || !fs::exists(dir_ / r[i].substr(prefix.size()))) return std::nullopt;
-      RowImages images{store_.add_file(dir_ / r[2].substr(prefix.size()), "rendered image"),
-                       store_.add_file(dir_ / r[3].substr(prefix.size()), "rendered image"),
-                       store_.add_file(dir_ / r[4].substr(prefix.size()), "rendered image"), r[5], r[6] == "1"};
-      remember(t, row, images);
-      return images;
-    }
-    return std::nullopt;
-  }
-
-  RowImages render(const CsvTable& t, size_t row) {
-    RowConfiguration rc = row_configuration(t, row);
-    if (!device_.empty()) rc.config.options.device = device_;
-    const std::string key = rc.reference + " " + std::to_string(rc.check_size.width) + "x" + std::to_string(rc.check_size.height);
-    auto it = runners_.find(key);
-    if (it == runners_.end()) {
-      BenchSettings settings;
-      settings.reference = rc.reference;
-      settings.check_size = rc.check_size;
-      it = runners_.emplace(key, std::make_unique<BenchmarkRunner>(settings)).first;
-    }
-    const CheckedFrame checked = it->second->check_frame(rc.config);
-    RowImages images{store_.add(color_image(checked.frame)), store_.add(color_image(checked.reference)),
-                     store_.add(difference_map(checked.frame, checked.reference)), "", false};
-    const bool is_reference = rc.config.backend == rc.reference;
-    const std::string differences = is_reference ? "" : figure_differences(t, row, checked.agreement);
-    images.mismatch = !differences.empty();
-    images.note = "re-rendered by sdfbench " + git_commit() + " from the row's configuration (commit " +
-                  (t.has_column("commit") ? t.rows[row][t.column("commit")] : std::string("?")) + "): " +
-                  (is_reference ? "the reference itself"
-                   : differences.empty() ? "agreement figures equal the row's"
-                                         : "agreement figures differ (" + differences + "), not the row's images");
-    remember(t, row, images);
-    // After every row, with the earlier list's rows not (yet) reached: an interrupted report keeps both.
-    CsvTable progress = list_;
-    for (const auto& r : previous_.rows)
-      if (std::none_of(list_.rows.begin(), list_.rows.end(), [&](const auto& x) { return x[0] == r[0] && x[1] == r[1]; }))
-        progress.rows.push_back(r);
-    write_csv(dir_ / kRenderedList, progress);
-    return images;
-  }
-
-  void write_list() const {
-    if (!list_.rows.empty()) write_csv(dir_ / kRenderedList, list_);
-  }
-
- private:
-  void remember(const CsvTable& t, size_t row, const RowImages& images) {
-    list_.rows.push_back({t.source, configuration_key(t.rows[row], t.columns), images.frame, images.reference, images.diff,
-                          images.note, images.mismatch ? "1" : "0"});
-  }
-
-  ImageStore& store_;
-  fs::path dir_;
-  CsvTable list_, previous_;
-  std::string device_;
-  std::map<std::string, std::unique_ptr<BenchmarkRunner>> runners_;
-};
 
 std::vector<ReportPlot> collect_plots(const std::vector<std::string>& dirs, ImageStore& store) {
   std::vector<ReportPlot> plots;
@@ -196,9 +70,9 @@ void run_report(const ReportArgs& args) {
   for (const std::string& path : args.inputs) files.push_back({read_csv(path), {}});
   const bool created = !fs::exists(files_dir);
   prepare_image_folder(files_dir, "--out's image folder");
-  if (created) write_file_atomically(files_dir / kOwnerMarker, {});
+  if (created) write_file_atomically(files_dir / ImageStore::kOwnerMarker, {});
   ImageStore store(files_dir, files_dir.filename().string() + "/");
-  MissingImages missing(store, files_dir, args.device);
+  RowRerenderer rerenderer(store, files_dir, args.device);
 
   size_t kept = 0, rendered = 0, mismatched = 0, without = 0;
   for (ReportFile& file : files) {
@@ -217,15 +91,12 @@ void run_report(const ReportArgs& args) {
         ++kept;
       } else if (failed) {
         images.note = "the configuration failed: no images";
-      } else if (std::optional<RowImages> before = args.render_missing ? missing.rendered_before(t, row) : std::nullopt) {
-        images = std::move(*before);
-        ++rendered;
-        mismatched += images.mismatch;
       } else if (args.render_missing) {
-        std::cerr << "[" << (rendered + 1) << "] " << where << ": rendering the check frame of " << field("backend") << " "
-                  << field("mode") << " " << field("scene") << "\n";
+        if (!rerenderer.listed(t, row))
+          std::cerr << "[" << (rendered + 1) << "] " << where << ": rendering the check frame of " << field("backend") << " "
+                    << field("mode") << " " << field("scene") << "\n";
         try {
-          images = missing.render(t, row);
+          images = rerendered_images(t, row, rerenderer.get(t, row));
         } catch (const Error& e) {
           throw Error(where + ": " + e.what());
         }
@@ -241,7 +112,7 @@ void run_report(const ReportArgs& args) {
   const std::vector<ReportPlot> plots = collect_plots(args.plots, store);
   const std::string html = html_report(files, plots, ThesisTables::load_default(), git_commit());
   write_file_atomically(out, std::as_bytes(std::span(html.data(), html.size())));
-  missing.write_list();
+  if (args.render_missing) rerenderer.write_list(false);
   store.remove_unlinked();
   std::cout << "report: " << out.string() << " (images in " << files_dir.string() << "/): " << kept << " rows with kept images, "
             << rendered << " re-rendered" << (mismatched ? " (" + std::to_string(mismatched) + " whose figures differ from the row's)" : "")

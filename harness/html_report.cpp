@@ -1,6 +1,7 @@
 #include "harness/html_report.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <set>

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 
@@ -13,6 +14,7 @@
 #include "harness/csv.h"
 #include "harness/measurement.h"
 #include "harness/row_configuration.h"
+#include "harness/row_rerender.h"
 #include "test_support.h"
 #include "util/error.h"
 
@@ -212,6 +214,38 @@ TEST(RowConfiguration, ARowReadsBackAsTheConfigurationThatWroteIt) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("'configs.csv' row 2, column octree_depth"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace sdfbench
+
+namespace sdfbench {
+namespace {
+
+// A re-render reproduces a row when its figures differ by float rounding only, and not when a
+// pixel or a PSNR that means something differs.
+TEST(Report, ARerenderReproducesARowWithinRoundingOnly) {
+  CsvTable t;
+  t.columns = {"scene", "backend", "mode", "width", "height", "check_size", "hit_agreement", "id_agreement", "psnr", "depth_p99"};
+  t.rows = {{"thesis:bunny:1", "bvh", "primary", "64", "36", "320x180", "99.9", "100", "137.31", "1.3e-07"}};
+  t.source = "t.csv";
+  Rerender r;
+  r.hit_agreement = "99.9";
+  r.id_agreement = "100";
+  r.psnr = "137.309";  // both above 100 dB: float rounding, no 8-bit pixel differs
+  r.depth_p99 = "1.30001e-07";
+  EXPECT_EQ(rerender_differences(t, 0, r), "");
+  r.hit_agreement = "99.8983";  // one pixel of 320x180 is 0.0017 %
+  EXPECT_EQ(rerender_differences(t, 0, r), "hit_agreement 99.9 → 99.8983");
+  r.hit_agreement = "99.9";
+  t.rows[0][t.column("psnr")] = "45.2";
+  r.psnr = "45.25";
+  EXPECT_EQ(rerender_differences(t, 0, r), "psnr 45.2 → 45.25");
+  r.psnr = "45.2";
+  r.depth_p99 = "2e-07";
+  EXPECT_EQ(rerender_differences(t, 0, r), "depth_p99 1.3e-07 → 2e-07");
+  r.reference_row = true;  // the reference's own row has no figures to reproduce
+  EXPECT_EQ(rerender_differences(t, 0, r), "");
 }
 
 }  // namespace
