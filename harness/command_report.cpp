@@ -1,18 +1,11 @@
 // `sdfbench report`: one HTML page (harness/html_report.h) from measurement CSVs, the check
 // images their runs kept (--keep-images) and plots; images go to a folder beside the page.
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <map>
-#include <memory>
-#include <optional>
-#include <set>
 
 #include "harness/commands.h"
 #include "harness/html_report.h"
-#include "harness/image_output.h"
-#include "harness/measurement.h"
 #include "harness/output_paths.h"
 #include "harness/image_store.h"
 #include "harness/row_rerender.h"
