@@ -60,29 +60,9 @@ Measurement configuration_fields(const BenchConfig& config, size_t run_index, co
   m.max_depth = config.max_depth;
   m.width = config.size.width;
   m.height = config.size.height;
-  if (is_sdf_backend(config.backend)) {
-    const sdf::SceneHashParams p = scene_hash_params_for(config.backend, config.options);
-    m.hash_cell = p.hash_cell;
-    m.octree_depth = p.octree_depth;
-    m.octree_min_objects = p.octree_min_objects;
-    m.octree_min_size = p.octree_min_size;
-    m.lists = p.lists == sdf::ListRule::Exact ? "exact" : "thesis";
-    m.mesh_cell = config.options.mesh_grid.cell_size;
-    if (config.options.mesh_grid.cell_size <= 0) {
-      m.cells_per_extent = config.options.mesh_grid.cells_per_extent;
-      m.fixed_grid = config.options.mesh_grid.scale_with_triangles ? 0.0 : 1.0;
-    }
-    const sdf::SphereTraceParams& t = config.options.tracing;
-    m.hit = sdf::to_string(t.hit);
-    m.max_steps = t.max_steps;
-    m.hit_epsilon = t.hit_epsilon;
-    m.hit_footprint = t.footprint;
-    m.over_relax = t.over_relax;
-    m.cell_bound = t.cell_bound ? 1.0 : 0.0;
-    m.storage_tables = t.storage_tables ? 1.0 : 0.0;
-    m.max_structure_mb = static_cast<double>(config.options.mesh_grid.max_bytes >> 20);
-    for (const ParamSpec& spec : param_specs())
-      if (belongs_to(spec, config.backend)) m.backend_params[spec.name] = config.options.params.get(spec.name);
+  const BackendInfo& backend = backend_info(config.backend);
+  m.backend_params = recorded_params(backend, resolve_params(backend, config.options.params));
+  if (backend.stores_structure) {
     m.cache = config.options.cache.path;
     if (!m.cache.empty()) m.on_bad_cache = config.options.cache.on_bad == sdf::BadCachePolicy::Rebuild ? "rebuild" : "refuse";
   }

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <filesystem>
 #include <cstdio>
+#include <algorithm>
 #include <map>
 
+#include "harness/list_option.h"
 #include "renderers/shading/gpu_types.h"
 #include "util/error.h"
 #include "util/input_file.h"
@@ -79,7 +81,6 @@ void add_backend_options(CLI::App& command, BackendOptions& options) {
              "whitted on Vulkan: on = one ray per pixel per dispatch (for drivers with a loop cap), off = a pixel's "
              "whole ray tree in one invocation; auto (default): on only where `sdfbench info` finds a loop cap")
       ->check(CLI::IsMember({"auto", "on", "off"}));
-  add_structure_options(command, options);
   add_backend_param_options(command, options.params);
   command.add_option("--cache", options.cache.path,
                      "SDF structure cache file: loaded when valid for this scene and these parameters, else built and written")
@@ -100,81 +101,92 @@ void add_backend_options(CLI::App& command, BackendOptions& options) {
       ->group("SDF structures");
 }
 
-void add_backend_param_options(CLI::App& command, BackendParams& params) {
-  for (const ParamSpec& spec : param_specs()) {
+namespace {
+
+// "(default 10; sdf-hash: 1; taken by sdf-hash, sdf-octree, sdf-bricks, sdf-cpu)"
+std::string param_help(const ParamSpec& spec) {
+  std::string other_defaults;
+  for (const BackendInfo& b : backends())
+    for (const ParamSpec& own : b.params)
+      if (own.name == spec.name && own.default_value != spec.default_value)
+        other_defaults += "; " + b.name + ": " + own.default_value;
+  return spec.help + " (default " + spec.default_value + other_defaults + "; taken by " + owners_of(spec.name) + ")";
+}
+
+const char* value_type(const ParamSpec& spec) {
+  switch (spec.kind) {
+    case ParamKind::Integer: return "INT";
+    case ParamKind::Real: return spec.choices.empty() ? "REAL" : "REAL|WORD";
+    case ParamKind::Choice: return "CHOICE";
+    case ParamKind::Flag: return "0|1";
+  }
+  return "VALUE";
+}
+
+}  // namespace
+
+std::string parse_param_value(const ParamSpec& spec, const std::string& value) {
+  std::string why;
+  const std::string canonical = canonical_param_value(spec, value, why);
+  if (!why.empty()) throw Error(flag_of(spec) + ": " + why);
+  return canonical;
+}
+
+std::vector<std::string> parse_param_list(const ParamSpec& spec, const std::string& list) {
+  std::vector<std::string> values;
+  for (const std::string& text : split_list(list, flag_of(spec))) {
+    const std::string value = parse_param_value(spec, text);
+    if (std::find(values.begin(), values.end(), value) != values.end())
+      throw Error(flag_of(spec) + " '" + list + "': '" + text + "' is " + value + " again (each value once)");
+    values.push_back(value);
+  }
+  return values;
+}
+
+void add_backend_param_options(CLI::App& command, BackendParams& params, const std::function<bool(const ParamSpec&)>& include) {
+  for (const ParamSpec& spec : param_catalogue()) {
+    if (include && !include(spec)) continue;
+    if (spec.kind == ParamKind::Flag) {
+      command.add_flag_function(flag_of(spec), [&params, name = spec.name](int64_t) { params.set(name, "1"); }, param_help(spec))
+          ->group(spec.group);
+      continue;
+    }
     command
         .add_option_function<std::string>(
-            flag_of(spec), [&params, name = spec.name](const std::string& value) { params.set(name, value); },
-            spec.help + " (default " + spec.default_value + ")")
-        ->check(CLI::Validator([spec](std::string& value) { return check_param_value(spec, value); },
-                               spec.positive_real ? "REAL" : spec.choices.empty() ? "INT" : "CHOICE"))
-        ->group(families_of(spec));
+            flag_of(spec), [&params, spec](const std::string& value) { params.set(spec.name, parse_param_value(spec, value)); },
+            param_help(spec))
+        ->type_name(value_type(spec))
+        ->group(spec.group);
   }
 }
 
-void add_structure_options(CLI::App& command, BackendOptions& options) {
-  const std::string group = "SDF structures";
-  command.add_option("--mesh-cell", options.mesh_grid.cell_size, "mesh distance grid cell size in mesh units (0: from --cells-per-extent)")
-      ->capture_default_str()->check(number_in(0.0, 1e30))->group(group);
-  command.add_option("--cells-per-extent", options.mesh_grid.cells_per_extent, "mesh grid cells along the mesh's largest extent")
-      ->capture_default_str()->check(CLI::Range(1u, 1024u))->group(group);
-  command.add_flag("--fixed-grid", [&options](int64_t) { options.mesh_grid.scale_with_triangles = false; },
-                   "keep --cells-per-extent for meshes over 8192 triangles too (default: finer with the triangle count, "
-                   "far cells as bounds; docs/measured.md, \"Large meshes\")")
-      ->group(group);
-  command.add_option("--hash-cell", options.scene_hash.hash_cell,
-                     "scene hash cell size (thesis: 10 with octree, 1 without; sdf-hash defaults to 1)")
-      ->capture_default_str()->check(number_in(1e-30, 1e30))->group(group)
-      ->each([&options](const std::string&) { options.hash_cell_given = true; });
-  command.add_option("--octree-depth", options.scene_hash.octree_depth, "octree depth per hash cell (0: hash only)")
-      ->capture_default_str()->check(CLI::Range(0u, 16u))->group(group);
-  command.add_option("--octree-min-objects", options.scene_hash.octree_min_objects, "octree leaf when a node lists <= this many instances")
-      ->capture_default_str()->check(CLI::Range(1u, 1000000u))->group(group);
-  command.add_option("--octree-min-size", options.scene_hash.octree_min_size, "octree leaf when a node's edge is <= this (thesis: 1)")
-      ->capture_default_str()->check(number_in(1e-30, 1e30))->group(group);
-  command.add_option("--lists", options.scene_hash.lists, "instance lists: exact (default) or thesis (influence AABB)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, sdf::ListRule>{{"exact", sdf::ListRule::Exact},
-                                                                              {"thesis", sdf::ListRule::Thesis}},
-                                          CLI::ignore_case))
-      ->group(group);
-  command.add_option_function<uint64_t>(
-             "--max-structure-mb",
-             [&options](uint64_t mb) { options.mesh_grid.max_bytes = options.scene_hash.max_bytes = mb << 20; },
-             "memory cap of each SDF structure (a mesh grid's lists, the scene hash's octrees): a build that grows past "
-             "it stops with an error (default " + std::to_string(sdf::kDefaultMaxStructureBytes >> 20) + ")")
-      ->check(CLI::Range(uint64_t(1), uint64_t(16384)))->group(group);
-  add_tracing_options(command, options.tracing, group);
+void add_backend_param_list_options(CLI::App& command, std::map<std::string, std::string>& lists) {
+  for (const ParamSpec& spec : param_catalogue())
+    command
+        .add_option_function<std::string>(
+            flag_of(spec), [&lists, name = spec.name](const std::string& values) { lists[name] = values; },
+            param_help(spec) + "; comma-separated values, each a configuration")
+        ->type_name("LIST")
+        ->group(spec.group);
 }
 
-void add_tracing_options(CLI::App& command, sdf::SphereTraceParams& tracing, const std::string& group) {
-  command.add_option("--max-steps", tracing.max_steps, "sphere-tracing steps per ray")
-      ->capture_default_str()->check(CLI::Range(1u, 1000000u))->group(group);
-  command.add_option("--hit-epsilon", tracing.hit_epsilon, "--hit thesis: sphere-tracing hit distance, relative to the scene size (beyond 1e-2 objects blur and vanish)")
-      ->capture_default_str()->check(number_in(1e-8, 1e-2))->group(group);
-  command.add_option("--hit-footprint", tracing.footprint,
-                     "--hit exact: hit distance as a fraction of a pixel's footprint at the ray's length")
-      ->capture_default_str()->check(number_in(1e-4, 1.0))->group(group);
-  command.add_option("--over-relax", tracing.over_relax,
-                     "over-relaxed sphere tracing (Keinert et al. 2014): steps of this x the distance, checked and undone "
-                     "where they may have jumped a surface; 1 (default): the thesis' plain sphere tracing")
-      ->capture_default_str()->check(number_in(1.0, 1.95))->group(group);
-  command.add_flag("--cell-bound", tracing.cell_bound,
-                   "Vulkan SDF kernels: a step from an octree leaf (hash cell) that no listed instance's box comes "
-                   "near crosses it without evaluating an instance (off: the thesis' step everywhere)")
-      ->group(group);
-  command.add_flag("--storage-tables", tracing.storage_tables,
-                   "Vulkan SDF kernels: the structure's tables in storage buffers instead of texel buffers (the same "
-                   "data and images; which is faster depends on the device)")
-      ->group(group);
-  command.add_option("--hit", tracing.hit,
-                     "SDF hits: exact (default: the ray's crossing with the triangles listed where it converged) or "
-                     "thesis (the converged point, the closest point's normal and uv); sdf-bricks and sdf-global: exact or field (the sampled "
-                     "field's own crossing and gradient normal, its accuracy in the row)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, sdf::HitMode>{{"exact", sdf::HitMode::exact},
-                                                                             {"thesis", sdf::HitMode::thesis},
-                                                                             {"field", sdf::HitMode::field}},
-                                          CLI::ignore_case))
-      ->group(group);
+void check_options_taken(const BackendOptions& options, const std::vector<std::string>& run_backends) {
+  check_params_taken(options.params, run_backends);
+  if (options.cache.path.empty()) return;
+  for (const std::string& b : run_backends)
+    if (backend_info(b).stores_structure) return;
+  std::string stores;
+  for (const BackendInfo& b : backends())
+    if (b.stores_structure) stores += (stores.empty() ? "" : ", ") + b.name;
+  throw Error("--cache stores the structures of " + stores + "; no backend of this run takes it");
+}
+
+std::string describe_params(const BackendInfo& backend, const BackendParams& given) {
+  const std::map<std::string, std::string> recorded = recorded_params(backend, resolve_params(backend, given));
+  std::string text;
+  for (const ParamSpec& spec : backend.params)  // in the backend's order
+    if (recorded.count(spec.name)) text += (text.empty() ? "" : " ") + spec.name + "=" + recorded.at(spec.name);
+  return text.empty() ? "none" : text;
 }
 
 void add_mode_options(CLI::App& command, std::string& mode, std::optional<uint32_t>& max_depth) {

@@ -1,10 +1,13 @@
 #pragma once
 // Options and helpers shared by the sdfbench commands.
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "scenes/scene.h"
 #include "util/image_codec.h"
@@ -30,14 +33,27 @@ void check_image_size(ImageSize size, const std::string& what);
 // the range in a few digits (CLI11's own prints doubles' limits in full: 309 digits).
 CLI::Validator number_in(double lo, double hi, bool lo_open = false);
 
-// --device, --threads, --validate and the structure options below
+// --device, --threads, --validate, --whitted-passes, --cache, --on-bad-cache and every backend's
+// own parameters (add_backend_param_options)
 void add_backend_options(CLI::App& command, BackendOptions& options);
-// The flags of every backend family's own parameters (renderers/backend_params.h), grouped by family.
-void add_backend_param_options(CLI::App& command, BackendParams& params);
-// --mesh-cell, --cells-per-extent, --hash-cell, --octree-*, --lists, --max-steps, --hit-epsilon
-void add_structure_options(CLI::App& command, BackendOptions& options);
-// --max-steps, --hit-epsilon, --hit (add_structure_options includes them).
-void add_tracing_options(CLI::App& command, sdf::SphereTraceParams& tracing, const std::string& group);
+// One flag per parameter of the registry's catalogue (renderers/backend_registry.h), its help
+// naming the backends that take it; a value is checked and stored as it will be used.
+// `include`, when given, picks which.
+void add_backend_param_options(CLI::App& command, BackendParams& params,
+                               const std::function<bool(const ParamSpec&)>& include = {});
+// The same parameters as comma-separated lists (sweep axes): name -> the list as given.
+void add_backend_param_list_options(CLI::App& command, std::map<std::string, std::string>& lists);
+// A parameter's value as it is used and recorded; throws Error naming the flag and quoting `value`.
+std::string parse_param_value(const ParamSpec& spec, const std::string& value);
+// A sweep axis: the values of a comma-separated list, each as parse_param_value gives it; two that
+// are one value ("8,008") are refused.
+std::vector<std::string> parse_param_list(const ParamSpec& spec, const std::string& list);
+// Throws Error naming the flag when a parameter given is taken by none of `backends`
+// (backend_registry.h), and when --cache is given but none of them stores a structure.
+void check_options_taken(const BackendOptions& options, const std::vector<std::string>& backends);
+// "hash_cell=10 octree_depth=4 ..." (or "none"): the parameters `backend` uses, given or its
+// defaults, as its CSV row records them.
+std::string describe_params(const BackendInfo& backend, const BackendParams& given);
 
 // --mode primary|shadow|whitted and --max-depth (whitted recursion limit; default: the scene's)
 void add_mode_options(CLI::App& command, std::string& mode, std::optional<uint32_t>& max_depth);

@@ -12,6 +12,7 @@
 #include "harness/output_paths.h"
 #include "renderers/sdf/scene_hash.h"
 #include "renderers/sdf/sdf_cache.h"
+#include "renderers/sdf/sdf_params.h"
 #include "scenes/scene_source.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -20,8 +21,8 @@ namespace sdfbench {
 namespace {
 
 struct BuildArgs {
-  std::string scene;
-  BackendOptions options;
+  std::string scene, backend = "sdf-octree";
+  BackendParams params;
   std::string cache;
 };
 
@@ -54,15 +55,22 @@ double peak_memory_mb() {
 
 void run_build(const BuildArgs& args) {
   const auto wall_start = std::chrono::steady_clock::now();
-  sdf::validate(args.options.scene_hash);
+  const BackendInfo& backend = backend_info(args.backend);
+  if (!owns(backend, "hash_cell"))
+    throw Error("--backend " + args.backend + ": build makes the exact structures of " + owners_of("hash_cell") +
+                " (mesh grids, scene hash, octrees); " + args.backend + " has no scene hash");
+  check_params_taken(args.params, {args.backend});
+  const BackendParams params = resolve_params(backend, args.params);
+  const sdf::MeshGridParams mesh_grid = sdf::mesh_grid_params(params);
+  const sdf::SceneHashParams scene_hash = sdf::scene_hash_params(params);
   if (!args.cache.empty()) check_output_path(args.cache, "--cache");
   const Scene scene = load_scene(args.scene);
   check_distinct_outputs({{"--cache", args.cache}}, scene_inputs(scene));
-  sdf::scene_hash_dims(scene, args.options.scene_hash);  // refused before the mesh grids are built
+  sdf::scene_hash_dims(scene, scene_hash);  // refused before the mesh grids are built
   std::cout << "scene       " << describe_scene(scene) << "\n" << std::flush;
   sdf::SceneSdf sdf;
   for (const Mesh& mesh : scene.meshes) {
-    sdf.mesh_grids.push_back(sdf::build_mesh_distance_grid(mesh, args.options.mesh_grid));
+    sdf.mesh_grids.push_back(sdf::build_mesh_distance_grid(mesh, mesh_grid));
     const sdf::MeshDistanceGrid& g = sdf.mesh_grids.back();
     size_t longest = 0;
     for (size_t c = 0; c < g.cell_count(); ++c) longest = std::max<size_t>(longest, g.cell_begin[c + 1] - g.cell_begin[c]);
@@ -72,11 +80,11 @@ void run_build(const BuildArgs& args) {
                 static_cast<double>(g.bytes()) / 1e6, g.build_ms);
     if (!g.far_distance.empty())
       std::printf("            scaled for %zu triangles: %u cells per extent, %zu of %zu cells far (a bound, no list)\n",
-                  mesh.triangle_count(), sdf::effective_cells_per_extent(args.options.mesh_grid, mesh.triangle_count()), g.far_cell_count(),
+                  mesh.triangle_count(), sdf::effective_cells_per_extent(mesh_grid, mesh.triangle_count()), g.far_cell_count(),
                   g.cell_count());
   }
   std::fflush(stdout);
-  sdf.hash = sdf::build_scene_hash(scene, sdf.mesh_grids, args.options.scene_hash);
+  sdf.hash = sdf::build_scene_hash(scene, sdf.mesh_grids, scene_hash);
   const sdf::SceneHash& h = sdf.hash;
   const ListStats lists = leaf_list_stats(h);
   std::printf("scene hash  %ux%ux%u = %zu cells of %.4g, %zu nodes (octree depth <= %u, %s lists)\n", h.dims.x, h.dims.y,
@@ -90,7 +98,7 @@ void run_build(const BuildArgs& args) {
   if (args.cache.empty()) return;
   for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
   const auto start = std::chrono::steady_clock::now();
-  sdf::write_sdf_cache(args.cache, scene, sdf, args.options.mesh_grid);
+  sdf::write_sdf_cache(args.cache, scene, sdf, mesh_grid);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   std::printf("cache       %s: %.2f MB, written in %.0f ms\n", args.cache.c_str(),
               static_cast<double>(std::filesystem::file_size(args.cache)) / 1e6, ms);
@@ -102,7 +110,10 @@ void register_build_command(CLI::App& app) {
   auto args = std::make_shared<BuildArgs>();
   CLI::App* cmd = app.add_subcommand("build", "Build a scene's SDF structures (mesh grids, scene hash, octrees) and report them");
   cmd->add_option("--scene", args->scene, "scene descriptor (.json) or generator, e.g. thesis:bunny:1000")->required();
-  add_structure_options(*cmd, args->options);
+  cmd->add_option("--backend", args->backend, "whose structures and defaults: one of " + owners_of("hash_cell"))
+      ->capture_default_str();
+  // The structures' parameters (not the tracing's: build traces nothing).
+  add_backend_param_options(*cmd, args->params, [](const ParamSpec& spec) { return spec.group == "SDF structures"; });
   cmd->add_option("--cache", args->cache, "write the structures to this cache file (atomically), for render --cache");
   cmd->callback([args] { run_build(*args); });
 }

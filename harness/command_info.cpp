@@ -7,7 +7,7 @@
 #include "harness/commands.h"
 #include "harness/system_info.h"
 #include "renderers/embree/embree_api.h"
-#include "renderers/renderer.h"
+#include "renderers/backend_registry.h"
 #include "renderers/vulkan/loop_cap_probe.h"
 #include "renderers/vulkan/ray_tracing_support.h"
 #include "renderers/vulkan/vulkan_context.h"
@@ -105,9 +105,7 @@ void print_info() {
     }
   }
 
-  std::cout << "\nBackends: ";
-  for (size_t i = 0; i < backend_names().size(); ++i) std::cout << (i ? ", " : "") << backend_names()[i];
-  std::cout << "\n";
+  std::cout << "\nBackends: " << backend_list() << " (`sdfbench backends` describes each and its parameters)\n";
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "harness/output_paths.h"
 #include "harness/structure_view.h"
 #include "harness/timing_stats.h"
+#include "renderers/sdf/sdf_params.h"
 #include "scenes/scene_source.h"
 #include "util/error.h"
 
@@ -53,8 +54,8 @@ void report_counters(const RenderArgs& args, Renderer& renderer, FrameRequest re
 // The frame with the scene hash (or one hash cell's octree) drawn over it, as thesis figures
 // 6.6-6.7; the structures are the backend's (sdf-hash: cell 1 unless --hash-cell).
 FrameImages structure_view(const RenderArgs& args, const Scene& scene, const FrameRequest& request, const FrameImages& frame) {
-  const sdf::SceneSdf sdf = sdf::obtain_scene_sdf(scene, args.backend_options.mesh_grid,
-                                                  scene_hash_params_for(args.backend, args.backend_options),
+  const BackendParams params = resolve_params(backend_info(args.backend), args.backend_options.params);
+  const sdf::SceneSdf sdf = sdf::obtain_scene_sdf(scene, sdf::mesh_grid_params(params), sdf::scene_hash_params(params),
                                                   args.backend_options.cache, std::cerr);
   const StructureView view = args.view == "hash" ? StructureView::Hash : StructureView::Octree;
   const glm::uvec3 shown = args.view_cell.empty() ? default_view_cell(frame, scene, request, sdf.hash)
@@ -73,27 +74,29 @@ void run_render(const RenderArgs& args) {
   const RenderMode mode = parse_mode_option(args.mode);
   if (!args.out.empty()) check_image_path(args.out, "--out");
   if (!args.aov.empty()) check_aov_path(args.aov, "--aov");
+  const BackendInfo& backend = backend_info(args.backend);
   if (!args.view.empty() && args.out.empty()) throw Error("--view draws over the --out image: give --out");
+  if (!args.view.empty() && !owns(backend, "hash_cell"))
+    throw Error("--view draws the scene hash and its octrees: " + args.backend + " has none (backends with one: " +
+                owners_of("hash_cell") + ")");
   if (!args.heatmap.empty()) {
     check_image_path(args.heatmap, "--heatmap");
-    if (!is_sdf_backend(args.backend))
-      throw Error("--heatmap maps sphere-tracing steps: " + args.backend + " takes none (use an sdf-* backend)");
+    if (!backend.steps) throw Error("--heatmap maps sphere-tracing steps: " + args.backend + " takes none (use an sdf-* backend)");
   }
+  check_options_taken(args.backend_options, {args.backend});
   const Scene scene = load_scene(args.scene);
   check_distinct_outputs({{"--out", args.out}, {"--aov", args.aov}, {"--heatmap", args.heatmap},
                           {"--cache", args.backend_options.cache.path}},
                          scene_inputs(scene));
   const ImageSize size = frame_size(args.size, scene);
 
-  check_backend_name(args.backend);
-  if (const std::string misplaced = args.backend_options.params.misplaced_for(args.backend); !misplaced.empty())
-    throw Error(misplaced + ", not of --backend " + args.backend);
   std::unique_ptr<Renderer> renderer = create_renderer(args.backend, args.backend_options);
   renderer->prepare(scene);
   FrameRequest request{size.width, size.height, mode, false, args.max_depth};
   std::cout << "scene    " << describe_scene(scene) << "\n"
             << "backend  " << renderer->name() << " on " << renderer->device_name() << " [" << renderer->driver_name()
             << "]\n"
+            << "params   " << describe_params(backend, args.backend_options.params) << "\n"
             << "frame    " << describe_mode(request, scene) << ", " << size.width << "x" << size.height << ", "
             << args.warmup << " warm-up + " << args.frames << " timed frames\n"
             << std::flush;
@@ -135,7 +138,7 @@ void register_render_command(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene with one backend; print timings, write image and AOVs");
   cmd->add_option("--scene", args->scene, "scene descriptor (.json) or generator, e.g. thesis:bunny:100[:seed]")->required();
-  cmd->add_option("--backend", args->backend, "embree | tri-aabb | bvh | vk-rt | sdf-hash | sdf-octree | sdf-cpu")->required();
+  cmd->add_option("--backend", args->backend, "one of " + backend_list() + " (`sdfbench backends` describes them)")->required();
   add_mode_options(*cmd, args->mode, args->max_depth);
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT (default: the scene's render size)");
   cmd->add_option("--frames", args->frames, "timed frames")->capture_default_str()->check(CLI::Range(1u, 100000u));

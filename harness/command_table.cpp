@@ -14,7 +14,7 @@ namespace {
 
 struct TableArgs {
   std::string tables = "all", size, meshes = "bunny,teapot,monkey,sphere", objects = "1,10,100,1000",
-              backends = "embree,tri-aabb,bvh,vk-rt,sdf-hash,sdf-octree,sdf-bricks,sdf-global", mode, triangles;
+              backends = default_table_backends(), mode, triangles;
   unsigned max_depth = 4;
   bool quick = false;
   RunOptions run;
@@ -55,6 +55,7 @@ std::vector<BenchConfig> table_plan(const TableArgs& args) {
   // Unknown names fail here, before hours of work; a device a backend cannot use (vk-rt without
   // ray tracing) makes its rows ERROR rows.
   for (const std::string& b : backends) check_backend_name(b);
+  check_options_taken(args.options, backends);
   const ImageSize size = parse_size(args.size.empty() ? (args.quick ? "160x90" : "1280x720") : args.size);
   check_plan_size({{"--meshes x --triangles", mesh_specs.size()}, {"--objects", counts.size()}, {"modes", modes.size()},
                    {"--backends", backends.size()}});

@@ -5,6 +5,7 @@ namespace sdfbench {
 
 // Each registers its subcommand and the callback that runs it.
 void register_info_command(CLI::App& app);
+void register_backends_command(CLI::App& app);
 void register_render_command(CLI::App& app);
 void register_compare_command(CLI::App& app);
 void register_check_sdf_command(CLI::App& app);

@@ -8,7 +8,7 @@
 #include <set>
 #include <sstream>
 
-#include "renderers/backend_params.h"
+#include "renderers/backend_registry.h"
 
 namespace sdfbench {
 namespace {
@@ -175,54 +175,45 @@ void backends_table(std::ostringstream& out, const std::string& mode, const std:
   out << "\n";
 }
 
-// A sweep of a backend family's own parameters (renderers/backend_params.h): those columns, the
-// field's counters and its accuracy in voxels.
-void family_sweep_table(std::ostringstream& out, const std::vector<Row>& rows, const std::vector<ParamSpec>& specs) {
+// A sweep: the parameters that vary over its rows (renderers/backend_registry.h: any backend's),
+// the structure's cost, the speed, the counters the backend has and the agreement (a sampled
+// field's depth error also in voxels).
+void sweep_table(std::ostringstream& out, const std::vector<Row>& rows) {
+  std::vector<std::string> varying;
+  for (const ParamSpec& spec : param_catalogue())
+    if (std::any_of(rows.begin(), rows.end(), [&](const Row& r) { return r[spec.name] != rows.front()[spec.name]; }))
+      varying.push_back(spec.name);
+  struct Figure {
+    const char *column, *title;
+    int digits;
+    double scale;
+  };
+  std::vector<Figure> figures = {{"build_ms", "build ms", 0, 1}, {"structure_bytes", "structure MB", 1, 1e-6}};
+  const std::vector<Figure> optional = {
+      {"steps_per_ray", "steps/ray", 1, 1},           {"instance_evals_per_ray", "instance evals/ray", 1, 1},
+      {"triangle_evals_per_ray", "triangle evals/ray", 1, 1}, {"field_samples_per_ray", "field samples/ray", 1, 1},
+      {"aabb_tests_per_ray", "AABB tests/ray", 1, 1}, {"triangle_tests_per_ray", "triangle tests/ray", 1, 1},
+      {"hit_agreement", "hit %", 2, 1},               {"id_agreement", "id %", 2, 1},
+      {"depth_p99_voxels", "depth p99 (voxels)", 3, 1}, {"psnr", "PSNR dB", 1, 1}};
+  for (const Figure& f : optional)
+    if (std::any_of(rows.begin(), rows.end(), [&](const Row& r) { return !r[f.column].empty(); })) figures.push_back(f);
   out << "### Sweep: " << rows.front()["scene"] << ", " << rows.front()["backend"] << ", " << rows.front()["mode"] << " ("
       << sizes_of(rows) << ")\n\n|";
-  for (const ParamSpec& spec : specs) out << " " << spec.name << " |";
-  out << " hit | build ms | structure MB | FPS | Mrays/s | steps/ray | field samples/ray | triangle tests/ray | hit % | "
-         "id % | depth p99 | depth p99 (voxels) | PSNR dB |\n|";
-  for (size_t i = 0; i < specs.size() + 13; ++i) out << (i < specs.size() + 1 ? "---|" : "---:|");
+  for (const std::string& name : varying) out << " " << name << " |";
+  out << " FPS | Mrays/s |";
+  for (const Figure& f : figures) out << " " << f.title << " |";
+  out << "\n|";
+  for (size_t i = 0; i < varying.size(); ++i) out << "---|";
+  for (size_t i = 0; i < figures.size() + 2; ++i) out << "---:|";
   out << "\n";
-  auto cell = [](const Row& r, const char* column, int digits) {
-    return r[column].empty() ? std::string("–") : fixed(r.number(column), digits);
-  };
   for (const Row& r : rows) {
     out << "|";
-    for (const ParamSpec& spec : specs) out << " " << r[spec.name] << " |";
-    out << " " << r["hit"] << " | " << fixed(r.number("build_ms"), 0) << " | " << fixed(r.number("structure_bytes") / 1e6, 1)
-        << " | " << fps_cell(r) << " | " << fixed(r.number("mrays_per_s"), 3) << " | " << cell(r, "steps_per_ray", 1) << " | "
-        << cell(r, "field_samples_per_ray", 1) << " | " << cell(r, "triangle_tests_per_ray", 1) << " | "
-        << cell(r, "hit_agreement", 2) << " | " << cell(r, "id_agreement", 2) << " | "
-        << (r["depth_p99"].empty() ? "–" : r["depth_p99"]) << " | " << cell(r, "depth_p99_voxels", 3) << " | "
-        << cell(r, "psnr", 1) << " |\n";
+    for (const std::string& name : varying) out << " " << (r[name].empty() ? "–" : r[name]) << " |";
+    out << " " << fps_cell(r) << " | " << fixed(r.number("mrays_per_s"), 3) << " |";
+    for (const Figure& f : figures)
+      out << " " << (r[f.column].empty() ? std::string("–") : fixed(r.number(f.column) * f.scale, f.digits)) << " |";
+    out << "\n";
   }
-  out << "\n";
-}
-
-void sweep_table(std::ostringstream& out, const std::vector<Row>& rows) {
-  std::vector<ParamSpec> specs;
-  for (const ParamSpec& spec : param_specs())
-    if (belongs_to(spec, rows.front()["backend"])) specs.push_back(spec);
-  if (!specs.empty()) return family_sweep_table(out, rows, specs);
-  out << "### Sweep: " << rows.front()["scene"] << ", " << rows.front()["backend"] << ", " << rows.front()["mode"] << " ("
-      << sizes_of(rows) << ")\n\n"
-      << "| hash cell | octree depth | min objects | mesh cell | over-relax | cell bound | tables | build ms | structure MB | FPS | "
-         "Mrays/s | steps/ray | instance evals/ray | triangle evals/ray | hit % | id % | PSNR dB |\n"
-         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  for (const Row& r : rows)
-    out << "| " << r["hash_cell"] << " | " << r["octree_depth"] << " | " << r["octree_min_objects"] << " | "
-        << r["mesh_cell"] << " | " << r["over_relax"] << " | " << (r["cell_bound"] == "1" ? "on" : "off") << " | "
-        << (r["storage_tables"] == "1" ? "storage" : "texel") << " | "
-        << fixed(r.number("build_ms"), 0) << " | " << fixed(r.number("structure_bytes") / 1e6, 1)
-        << " | " << fps_cell(r) << " | " << fixed(r.number("mrays_per_s"), 3) << " | "
-        << (r["steps_per_ray"].empty() ? "–" : fixed(r.number("steps_per_ray"), 1)) << " | "
-        << (r["instance_evals_per_ray"].empty() ? "–" : fixed(r.number("instance_evals_per_ray"), 1)) << " | "
-        << (r["triangle_evals_per_ray"].empty() ? "–" : fixed(r.number("triangle_evals_per_ray"), 1)) << " | "
-        << (r["hit_agreement"].empty() ? "–" : fixed(r.number("hit_agreement"), 2)) << " | "
-        << (r["id_agreement"].empty() ? "–" : fixed(r.number("id_agreement"), 2)) << " | "
-        << (r["psnr"].empty() ? "–" : fixed(r.number("psnr"), 1)) << " |\n";
   out << "\n";
 }
 
@@ -251,11 +242,8 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
   if (by_table.count("6.1") && by_table.count("6.3")) speedup_table(out, by_table["6.1"], by_table["6.3"], thesis);
   for (const auto& [mode, mode_rows] : by_mode) {
     backends_table(out, mode, mode_rows);
-    pair_table(out, mode, mode_rows, "sdf-octree", "vk-rt", "the thesis' structure against the driver's BVH");
-    pair_table(out, mode, mode_rows, "sdf-bricks", "sdf-octree", "a sampled per-mesh field against the exact one");
-    pair_table(out, mode, mode_rows, "sdf-bricks", "bvh", "a sampled per-mesh field against a BVH in a compute kernel");
-    pair_table(out, mode, mode_rows, "sdf-global", "sdf-octree", "one sampled scene-wide field against the thesis' structure");
-    pair_table(out, mode, mode_rows, "sdf-global", "bvh", "one sampled scene-wide field against a BVH in a compute kernel");
+    for (const BackendInfo& backend : backends())  // the pairs each backend declares (renderers/backend_registry.h)
+      for (const BackendPartner& partner : backend.partners) pair_table(out, mode, mode_rows, backend.name, partner.other, partner.what);
   }
   for (const std::vector<Row>& sweep : sweeps) sweep_table(out, sweep);
   if (rows.empty()) out << "(no measurements)\n";

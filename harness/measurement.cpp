@@ -9,7 +9,7 @@
 #include <optional>
 #include <set>
 
-#include "renderers/backend_params.h"
+#include "renderers/backend_registry.h"
 #include "util/error.h"
 
 
@@ -27,31 +27,29 @@ namespace {
 std::string number(double v) { return csv_number(v); }
 std::string number(const std::optional<double>& v) { return v ? number(*v) : ""; }
 
-// Everything configuration_fields() fills: what was asked for, not what happened (frames, the
-// timed frames actually run, and device, the device found, are left out; requested_frames and
-// requested_device are in).
-// The backend families' own parameters (renderers/backend_params.h) follow storage_tables.
+// The backends' parameters (renderers/backend_registry.h) stand where "params" does.
 std::vector<std::string> with_backend_params(std::vector<std::string> columns) {
-  auto at = std::find(columns.begin(), columns.end(), "storage_tables") + 1;
-  for (const ParamSpec& spec : param_specs()) at = columns.insert(at, spec.name) + 1;
+  auto at = columns.erase(std::find(columns.begin(), columns.end(), "params"));
+  for (const ParamSpec& spec : param_catalogue()) at = columns.insert(at, spec.name) + 1;
   return columns;
 }
 
-const std::vector<std::string> kKeyColumns = with_backend_params({
-    "table", "scene", "backend", "mode", "max_depth", "width", "height", "hash_cell", "octree_depth",
-    "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent", "fixed_grid", "hit", "max_steps", "hit_epsilon",
-    "hit_footprint", "over_relax", "cell_bound", "storage_tables", "max_structure_mb", "cache", "on_bad_cache", "requested_frames", "warmup",
-    "budget_s", "check_size", "reference", "requested_device",
-    "whitted_passes", "validate", "threads"});
+// Everything configuration_fields() fills: what was asked for, not what happened (frames, the
+// timed frames actually run, and device, the device found, are left out; requested_frames and
+// requested_device are in).
+const std::vector<std::string>& key_columns() {
+  static const std::vector<std::string> columns = with_backend_params(
+      {"table", "scene", "backend", "mode", "max_depth", "width", "height", "params", "cache", "on_bad_cache", "requested_frames",
+       "warmup", "budget_s", "check_size", "reference", "requested_device", "whitted_passes", "validate", "threads"});
+  return columns;
+}
 
 }  // namespace
 
 const std::vector<std::string>& measurement_columns() {
   static const std::vector<std::string> columns = with_backend_params({
       "run_index", "run_id", "table", "scene", "mesh", "triangles", "objects", "backend", "mode", "max_depth", "width", "height",
-      "hash_cell", "octree_depth", "octree_min_objects", "octree_min_size", "lists", "mesh_cell", "cells_per_extent", "fixed_grid", "hit",
-      "max_steps", "hit_epsilon", "hit_footprint", "over_relax", "cell_bound", "storage_tables", "max_structure_mb", "cache", "on_bad_cache",
-      "requested_frames", "warmup", "budget_s", "reference",
+      "params", "cache", "on_bad_cache", "requested_frames", "warmup", "budget_s", "reference",
       "requested_device", "whitted_passes", "validate", "frames", "clock", "ms_median", "ms_min", "ms_max",
       "ms_wall_median", "fps", "mrays_per_s", "rays_per_pixel", "steps_per_ray", "instance_evals_per_ray",
       "triangle_evals_per_ray", "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray", "field_samples_per_ray", "prepare_ms", "build_ms", "structure_bytes", "backend_resolved", "check_size", "hit_agreement",
@@ -62,9 +60,6 @@ const std::vector<std::string>& measurement_columns() {
 std::vector<std::string> to_csv_fields(const Measurement& m) {
   std::vector<std::string> fields = {std::to_string(m.run_index), m.run_id, m.table, m.scene, m.mesh, std::to_string(m.triangles), std::to_string(m.objects),
           m.backend, m.mode, std::to_string(m.max_depth), std::to_string(m.width), std::to_string(m.height),
-          number(m.hash_cell), number(m.octree_depth), number(m.octree_min_objects), number(m.octree_min_size), m.lists,
-          number(m.mesh_cell), number(m.cells_per_extent), number(m.fixed_grid), m.hit, number(m.max_steps), number(m.hit_epsilon),
-          number(m.hit_footprint), number(m.over_relax), number(m.cell_bound), number(m.storage_tables), number(m.max_structure_mb),
           m.cache, m.on_bad_cache, std::to_string(m.requested_frames), std::to_string(m.warmup), number(m.budget_s),
           m.reference, m.requested_device, m.whitted_passes, m.validate ? "1" : "0", std::to_string(m.frames), m.clock, number(m.ms_median), number(m.ms_min), number(m.ms_max),
           number(m.ms_wall_median), number(m.fps), number(m.mrays_per_s), number(m.rays_per_pixel),
@@ -75,8 +70,8 @@ std::vector<std::string> to_csv_fields(const Measurement& m) {
           number(m.load_avg), number(m.cpu_steal_pct), number(m.cpu_other_pct), m.busy ? (*m.busy ? "1" : "0") : "", m.frame_image, m.reference_image, m.diff_image, m.device, m.driver, m.embree,
           m.cpu, std::to_string(m.threads), m.commit};
   const std::vector<std::string>& columns = measurement_columns();
-  auto at = fields.begin() + (std::find(columns.begin(), columns.end(), "storage_tables") - columns.begin() + 1);
-  for (const ParamSpec& spec : param_specs()) {
+  auto at = fields.begin() + (std::find(columns.begin(), columns.end(), "height") - columns.begin() + 1);
+  for (const ParamSpec& spec : param_catalogue()) {
     const auto it = m.backend_params.find(spec.name);
     at = fields.insert(at, it != m.backend_params.end() ? it->second : "") + 1;
   }
@@ -85,7 +80,7 @@ std::vector<std::string> to_csv_fields(const Measurement& m) {
 
 std::string configuration_key(const std::vector<std::string>& fields, const std::vector<std::string>& columns) {
   std::string key;
-  for (const std::string& name : kKeyColumns)
+  for (const std::string& name : key_columns())
     for (size_t i = 0; i < columns.size(); ++i)
       if (columns[i] == name) key += fields.at(i) + '|';
   return key;
@@ -93,7 +88,7 @@ std::string configuration_key(const std::vector<std::string>& fields, const std:
 
 std::string configuration_key(const Measurement& m) { return configuration_key(to_csv_fields(m), measurement_columns()); }
 
-const std::vector<std::string>& configuration_key_columns() { return kKeyColumns; }
+const std::vector<std::string>& configuration_key_columns() { return key_columns(); }
 
 std::string run_difference(const CsvTable& a, const CsvTable& b) {
   const std::string in_a = " in '" + a.source + "', ", in_b = " in '" + b.source + "'";
@@ -102,7 +97,7 @@ std::string run_difference(const CsvTable& a, const CsvTable& b) {
   for (size_t r = 0; r < a.rows.size(); ++r) {
     const auto it = rows_of_b.find(row_run_index(a, r, a.source));
     if (it == rows_of_b.end()) continue;
-    for (const std::string& name : kKeyColumns) {
+    for (const std::string& name : key_columns()) {
       const std::string &x = a.rows[r][a.column(name)], &y = b.rows[it->second][b.column(name)];
       if (x != y) return "run_index " + std::to_string(it->first) + " has " + name + " '" + x + "'" + in_a + "'" + y + "'" + in_b;
     }
@@ -117,7 +112,7 @@ std::string run_difference(const CsvTable& a, const CsvTable& b) {
   const std::set<std::string> run_wide = {"width", "height", "max_depth", "requested_frames", "warmup", "budget_s", "check_size",
                                           "reference", "requested_device", "whitted_passes", "validate", "threads"};
   std::string example;
-  for (const std::string& name : kKeyColumns) {
+  for (const std::string& name : key_columns()) {
     const auto x = uniform(a, a.column(name)), y = uniform(b, b.column(name));
     if (!x || !y || *x == *y) continue;
     const std::string difference = name + " '" + *x + "'" + in_a + "'" + *y + "'" + in_b;

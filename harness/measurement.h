@@ -20,22 +20,14 @@ struct Measurement {
   std::string backend, mode;
   unsigned max_depth = 0;
   unsigned width = 0, height = 0;
-  // SDF backends only (empty for the others): structure and sphere-tracing parameters
-  std::optional<double> hash_cell, octree_depth, octree_min_objects, octree_min_size, mesh_cell;
-  std::optional<double> cells_per_extent;  // when mesh_cell is 0 (derived from it)
-  std::optional<double> fixed_grid;        // when mesh_cell is 0: 1 = --fixed-grid (no scaling with the triangle count)
-  std::string lists;                        // "exact" or "thesis" (--lists)
-  std::string hit;                          // "exact" or "thesis" (--hit)
-  std::optional<double> max_steps, hit_epsilon, hit_footprint, over_relax, cell_bound, storage_tables;
-  // the parameters the row's backend family owns (renderers/backend_params.h), by name; the
-  // columns of every family, empty where the backend is of another
+  // the parameters the row's backend owns (renderers/backend_registry.h), by name, as it used
+  // them; the CSV has a column for every backend's, empty where the row's backend has no such
+  // parameter
   std::map<std::string, std::string> backend_params;
   // the run's methodology, as requested (--frames, --warmup, --budget-s, --reference, --device, ...)
   unsigned requested_frames = 0, warmup = 0;
   double budget_s = 0;
-  // what decides whether and how an SDF row's structures are built: the memory cap (--max-structure-mb)
-  // and the structure cache (--cache, --on-bad-cache: "refuse" or "rebuild"; empty without a cache)
-  std::optional<double> max_structure_mb;
+  // the structure cache (--cache, --on-bad-cache: "refuse" or "rebuild"; empty without a cache)
   std::string cache, on_bad_cache;
   std::string reference, requested_device, whitted_passes;  // whitted_passes: "auto", "on" or "off"
   bool validate = false;
@@ -69,6 +61,8 @@ struct Measurement {
   std::string commit;
 };
 
+// The columns, the backends' parameters (the registry's catalogue) among them: call after every
+// backend is registered.
 const std::vector<std::string>& measurement_columns();
 // A number as the CSV writes it: 6 significant digits, "inf" and "-inf".
 std::string csv_number(double v);

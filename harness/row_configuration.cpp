@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cmath>
 
+#include "renderers/backend_registry.h"
+#include "renderers/shading/gpu_types.h"
 #include "util/error.h"
 
 namespace sdfbench {
@@ -20,19 +22,16 @@ struct RowReader {
   std::string text(const std::string& column) const {
     return table.has_column(column) ? table.rows.at(row)[table.column(column)] : std::string();
   }
+  // An integer in [0, hi] (the range of the flag of the same name).
   template <typename T>
-  std::optional<T> number(const std::string& column) const {
+  void read(const std::string& column, T& target, T hi) const {
     const std::string field = text(column);
-    if (field.empty()) return std::nullopt;
+    if (field.empty()) return;
     double v = 0;
     const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), v);
-    if (ec != std::errc() || end != field.data() + field.size() || !std::isfinite(v) || v < 0)
-      throw Error(where(column) + ": '" + field + "' is not a non-negative number");
-    return static_cast<T>(v);
-  }
-  template <typename T>
-  void read(const std::string& column, T& target) const {
-    if (const std::optional<T> v = number<T>(column)) target = *v;
+    if (ec != std::errc() || end != field.data() + field.size() || !(v >= 0 && v <= static_cast<double>(hi)) || v != std::floor(v))
+      throw Error(where(column) + ": '" + field + "' is not an integer in [0, " + std::to_string(hi) + "]");
+    target = static_cast<T>(v);
   }
 };
 
@@ -45,51 +44,36 @@ RowConfiguration row_configuration(const CsvTable& table, size_t row) {
   c.table = r.text("table");
   c.scene = r.text("scene");
   c.backend = r.text("backend");
+  try {
+    check_backend_name(c.backend);
+  } catch (const Error& e) {
+    throw Error(r.where("backend") + ": " + e.what());
+  }
   if (c.scene.empty()) throw Error(r.where("scene") + ": empty");
   const std::optional<RenderMode> mode = parse_render_mode(r.text("mode"));
   if (!mode) throw Error(r.where("mode") + ": '" + r.text("mode") + "' is not primary, shadow or whitted");
   c.mode = *mode;
-  r.read("max_depth", c.max_depth);
+  r.read("max_depth", c.max_depth, MAX_DEPTH_LIMIT);
   c.size = parse_size(r.text("width") + "x" + r.text("height"), r.where("width/height"));
   out.check_size = parse_size(r.text("check_size").empty() ? "320x180" : r.text("check_size"), r.where("check_size"));
   out.reference = r.text("reference").empty() ? "embree" : r.text("reference");
 
   BackendOptions& o = c.options;
   if (!r.text("requested_device").empty()) o.device = r.text("requested_device");
-  r.read("threads", o.threads);
+  r.read("threads", o.threads, 1024u);
   const std::string passes = r.text("whitted_passes");
   if (passes == "on" || passes == "off") o.whitted_passes = passes == "on";
-  if (r.number<double>("hash_cell")) o.hash_cell_given = true;
-  r.read("hash_cell", o.scene_hash.hash_cell);
-  r.read("octree_depth", o.scene_hash.octree_depth);
-  r.read("octree_min_objects", o.scene_hash.octree_min_objects);
-  r.read("octree_min_size", o.scene_hash.octree_min_size);
-  if (const std::string lists = r.text("lists"); !lists.empty()) {
-    if (lists != "exact" && lists != "thesis") throw Error(r.where("lists") + ": '" + lists + "' is not exact or thesis");
-    o.scene_hash.lists = lists == "exact" ? sdf::ListRule::Exact : sdf::ListRule::Thesis;
-  }
-  r.read("mesh_cell", o.mesh_grid.cell_size);
-  r.read("cells_per_extent", o.mesh_grid.cells_per_extent);
-  if (r.text("fixed_grid") == "1") o.mesh_grid.scale_with_triangles = false;
-  if (const std::optional<double> mb = r.number<double>("max_structure_mb"))
-    o.mesh_grid.max_bytes = o.scene_hash.max_bytes = static_cast<uint64_t>(*mb) << 20;
-  sdf::SphereTraceParams& t = o.tracing;
-  if (const std::string hit = r.text("hit"); !hit.empty()) {
-    if (hit != "exact" && hit != "thesis" && hit != "field") throw Error(r.where("hit") + ": '" + hit + "' is not exact, thesis or field");
-    t.hit = hit == "exact" ? sdf::HitMode::exact : hit == "thesis" ? sdf::HitMode::thesis : sdf::HitMode::field;
-  }
-  r.read("max_steps", t.max_steps);
-  r.read("hit_epsilon", t.hit_epsilon);
-  r.read("hit_footprint", t.footprint);
-  r.read("over_relax", t.over_relax);
-  t.cell_bound = r.text("cell_bound") == "1";
-  t.storage_tables = r.text("storage_tables") == "1";
-  for (const ParamSpec& spec : param_specs()) {
+  // The backend's own parameters, checked as their flags check them (against this backend's
+  // choices). A column of a parameter the backend does not own is left out: older CSVs recorded
+  // what such a backend did implicitly (sdf-hash's octree depth 0, sdf-global's unused hash).
+  const BackendInfo& backend = backend_info(c.backend);
+  for (const ParamSpec& spec : backend.params) {
     const std::string value = r.text(spec.name);
     if (value.empty()) continue;
-    if (const std::string problem = check_param_value(spec, value); !problem.empty())
-      throw Error(r.where(spec.name) + ": " + problem);
-    o.params.set(spec.name, value);
+    std::string why;
+    const std::string canonical = canonical_param_value(spec, value, why);
+    if (!why.empty()) throw Error(r.where(spec.name) + ": " + why + " (as " + flag_of(spec) + " of " + backend.name + ")");
+    o.params.set(spec.name, canonical);
   }
   return out;
 }

@@ -3,45 +3,35 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
-#include <sstream>
+#include <cstdio>
 
 #include "util/error.h"
 
 namespace sdfbench {
 namespace {
 
-const ParamSpec& spec_of(const std::string& name) {
-  for (const ParamSpec& spec : param_specs())
-    if (spec.name == name) return spec;
-  throw Error("internal: no backend parameter '" + name + "'");
+std::string short_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
+std::string join(const std::vector<std::string>& words, const std::string& last) {
+  std::string text;
+  for (size_t i = 0; i < words.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == words.size() ? " " + last + " " : ", ") + words[i];
+  return text;
+}
+
+bool is_choice(const ParamSpec& spec, const std::string& value) {
+  return std::find(spec.choices.begin(), spec.choices.end(), value) != spec.choices.end();
+}
+
+std::string quoted(const std::string& value) {
+  return "'" + (value.size() > 40 ? value.substr(0, 40) + "..." : value) + "'";
 }
 
 }  // namespace
-
-const std::vector<ParamSpec>& param_specs() {
-  // sdf-bricks: the per-mesh brick fields (renderers/sdf/brick_field.h) and how sdf_bricks.comp
-  // uses them; sdf-global: the scene's one field (global_field.h) in the same brick format.
-  // Defaults from the measurements in results/lavapipe/ (docs/backends.md, "sdf-bricks", "sdf-global").
-  const std::vector<std::string> bricks = {"sdf-bricks"}, both = {"sdf-bricks", "sdf-global"}, global = {"sdf-global"};
-  static const std::vector<ParamSpec> specs = {
-      {"voxels", bricks, "128", "brick field lattice cells along each mesh's largest extent", {}, 4, 1024},
-      {"global_voxel", global, "auto",
-       "the global field's voxel in world units; auto: the median instance's largest extent / 10 (docs/backends.md, \"sdf-global\")",
-       {"auto"}, 0, 0, true},
-      {"sdf_format", both, "f32", "stored field values: f32, f16 or u8 (a band-relative UNORM)", {"f32", "f16", "u8"}},
-      {"brick_band", both, "4", "bricks within this many voxels of the surface are stored", {}, 1, 16},
-      {"brick_trace", bricks, "instance",
-       "instance: each listed instance traced through its own field, t clamped to the best hit (UE5); "
-       "min: the thesis' per-step minimum over the leaf's instances",
-       {"instance", "min"}},
-      {"brick_fetch", both, "auto",
-       "texel: 8 texel-buffer fetches and the trilinear in the kernel; sampler: the atlas as a 3D image the sampler "
-       "filters; auto: by device, from the measurement (docs/backends.md, \"sdf-bricks\"); the row's backend_resolved says which",
-       {"auto", "texel", "sampler"}},
-  };
-  return specs;
-}
 
 std::string flag_of(const ParamSpec& spec) {
   std::string flag = "--" + spec.name;
@@ -49,62 +39,72 @@ std::string flag_of(const ParamSpec& spec) {
   return flag;
 }
 
-bool belongs_to(const ParamSpec& spec, const std::string& backend) {
-  return std::find(spec.families.begin(), spec.families.end(), backend) != spec.families.end();
-}
-
-std::string families_of(const ParamSpec& spec) {
-  std::string text;
-  for (const std::string& f : spec.families) text += (text.empty() ? "" : ", ") + f;
-  return text;
-}
-
-std::string check_param_value(const ParamSpec& spec, const std::string& value) {
-  if (std::find(spec.choices.begin(), spec.choices.end(), value) != spec.choices.end()) return "";
-  std::string known;
-  for (const std::string& c : spec.choices) known += (known.empty() ? "" : ", ") + c;
-  if (spec.positive_real) {
-    char* end = nullptr;
-    const double v = value.empty() ? 0.0 : std::strtod(value.c_str(), &end);
-    if (!value.empty() && end == value.c_str() + value.size() && std::isfinite(v) && v > 0.0 && v < 1e30) return "";
-    return "expected " + (known.empty() ? "" : known + " or ") + "a positive number, got '" + value + "'";
+std::string describe_values(const ParamSpec& spec) {
+  const std::string words = spec.choices.empty() ? "" : join(spec.choices, "or") + " or ";
+  switch (spec.kind) {
+    case ParamKind::Integer:
+      return words + "an integer in [" + std::to_string(static_cast<int64_t>(spec.lo)) + ", " +
+             std::to_string(static_cast<int64_t>(spec.hi)) + "]";
+    case ParamKind::Real:
+      return words + "a number in " + (spec.lo_open ? "(" : "[") + short_number(spec.lo) + ", " + short_number(spec.hi) + "]";
+    case ParamKind::Choice: return join(spec.choices, "or");
+    case ParamKind::Flag: return "0 (off) or 1 (on)";
   }
-  if (!spec.choices.empty()) return "expected one of " + known + ", got '" + value + "'";
-  int64_t v = 0;
+  return "?";
+}
+
+std::string canonical_param_value(const ParamSpec& spec, const std::string& value, std::string& why) {
+  why.clear();
+  if (is_choice(spec, value)) return value;
+  const std::string expected = "expected " + describe_values(spec) + ", got " + quoted(value);
+  if (spec.kind == ParamKind::Choice) return why = expected, "";
+  if (spec.kind == ParamKind::Flag) {
+    if (value == "0" || value == "1") return value;
+    return why = expected, "";
+  }
+  double v = 0;
   const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
-  if (value.empty() || ec != std::errc() || end != value.data() + value.size() || v < spec.lo || v > spec.hi)
-    return "expected an integer in [" + std::to_string(spec.lo) + ", " + std::to_string(spec.hi) + "], got '" + value + "'";
-  return "";
-}
-
-void BackendParams::set(const std::string& name, const std::string& value) {
-  const ParamSpec& spec = spec_of(name);
-  if (const std::string why = check_param_value(spec, value); !why.empty()) throw Error(flag_of(spec) + ": " + why);
-  // One spelling per value, so that the CSV key of "064" and "64" is the same configuration.
-  if (std::find(spec.choices.begin(), spec.choices.end(), value) != spec.choices.end()) {
-    values_[name] = value;
-  } else if (spec.positive_real) {
-    std::ostringstream canonical;
-    canonical << std::strtod(value.c_str(), nullptr);
-    values_[name] = canonical.str();
-  } else {
-    values_[name] = std::to_string(std::stoll(value));
+  if (value.empty() || ec != std::errc() || end != value.data() + value.size() || !std::isfinite(v)) return why = expected, "";
+  if (spec.kind == ParamKind::Integer) {
+    if (v != std::floor(v) || v < spec.lo || v > spec.hi) return why = expected, "";
+    return std::to_string(static_cast<int64_t>(v));
   }
+  // A real is used as it is recorded: rounded to the CSV's 6 digits, then checked again (so a
+  // value below the range's resolution is refused, not measured as another one).
+  const std::string canonical = short_number(v);
+  const double used = std::strtod(canonical.c_str(), nullptr);
+  if (used < spec.lo || used > spec.hi || (spec.lo_open && used <= spec.lo)) return why = expected, "";
+  return canonical;
 }
 
-const std::string& BackendParams::get(const std::string& name) const {
+ParamSpec with_default(ParamSpec spec, const std::string& default_value) {
+  spec.default_value = default_value;
+  return spec;
+}
+
+ParamSpec with_choices(ParamSpec spec, const std::vector<std::string>& choices, const std::string& default_value) {
+  spec.choices = choices;
+  spec.default_value = default_value;
+  return spec;
+}
+
+const ParamSpec& find_spec(const std::vector<ParamSpec>& specs, const std::string& name) {
+  for (const ParamSpec& spec : specs)
+    if (spec.name == name) return spec;
+  throw Error("internal: no parameter '" + name + "' is declared");
+}
+
+const std::string& BackendParams::text(const std::string& name) const {
   const auto it = values_.find(name);
-  return it != values_.end() ? it->second : spec_of(name).default_value;
+  if (it == values_.end())
+    throw Error("internal: parameter '" + name + "' read by a backend that does not declare it (renderers/backend_registry.h)");
+  return it->second;
 }
 
-int64_t BackendParams::integer(const std::string& name) const { return std::stoll(get(name)); }
+int64_t BackendParams::integer(const std::string& name) const { return std::stoll(text(name)); }
 
-double BackendParams::real(const std::string& name) const { return std::strtod(get(name).c_str(), nullptr); }
+double BackendParams::real(const std::string& name) const { return std::strtod(text(name).c_str(), nullptr); }
 
-std::string BackendParams::misplaced_for(const std::string& backend) const {
-  for (const auto& [name, value] : values_)
-    if (!belongs_to(spec_of(name), backend)) return flag_of(spec_of(name)) + " is a parameter of " + families_of(spec_of(name));
-  return "";
-}
+bool BackendParams::flag(const std::string& name) const { return text(name) == "1"; }
 
 }  // namespace sdfbench

@@ -1,8 +1,9 @@
 #pragma once
-// Parameters a backend family owns (issue 28), as Mitsuba's plugins own their properties: each
-// family declares its parameters once (name, default, allowed values, help), and the commands'
-// flags, the sweep's axes and the CSV's columns are made from those declarations. A new backend
-// adds parameters here, not to BackendOptions or the harness.
+// Parameters a backend owns (issue 36), as Mitsuba's plugins own their properties: each is
+// declared once (name, kind, default, range or choices, help) next to the code that reads it, and
+// the commands' flags, the sweep's axes, the CSV's columns and their read-back are made from those
+// declarations (renderers/backend_registry.h). A backend reads only the parameters it declares,
+// through the typed accessors of BackendParams.
 #include <cstdint>
 #include <map>
 #include <string>
@@ -10,34 +11,57 @@
 
 namespace sdfbench {
 
-struct ParamSpec {
-  std::string name;           // CSV column; the flag is --name with '-' for '_'
-  std::vector<std::string> families;  // the backends that read it ("sdf-bricks", "sdf-global")
-  std::string default_value;
-  std::string help;
-  std::vector<std::string> choices;  // one of these; else (none, or also) a number:
-  int64_t lo = 0, hi = 0;            // an integer in [lo, hi], or
-  bool positive_real = false;        // a finite real number > 0
+enum class ParamKind {
+  Integer,  // an integer in [lo, hi] (or one of `choices`)
+  Real,     // a finite real in [lo, hi] ((lo, hi] when lo_open), or one of `choices` ("auto")
+  Choice,   // one of `choices`
+  Flag,     // 0 or 1: a switch on the command line (--cell-bound), 0,1 as a sweep axis
 };
 
-// Every family's parameters, in CSV column order.
-const std::vector<ParamSpec>& param_specs();
-std::string flag_of(const ParamSpec& spec);
-bool belongs_to(const ParamSpec& spec, const std::string& backend);
-std::string families_of(const ParamSpec& spec);  // "sdf-bricks, sdf-global"
-// An empty string when `value` is allowed, else why not (without the flag's name).
-std::string check_param_value(const ParamSpec& spec, const std::string& value);
+struct ParamSpec {
+  std::string name;  // CSV column; the flag is --name with '-' for '_'
+  ParamKind kind = ParamKind::Integer;
+  std::string default_value;
+  std::string help;
+  std::string group;                 // the help section ("SDF structures", "SDF tracing", ...)
+  std::vector<std::string> choices;  // Choice: the values; Integer/Real: words accepted besides numbers
+  double lo = 0, hi = 0;
+  bool lo_open = false;
+  // Recorded only where another parameter has a value (cells_per_extent: where mesh_cell is 0);
+  // elsewhere it changes nothing, and its column stays empty.
+  std::string only_when_param, only_when_value;
+};
 
-// The values given for a run; unset parameters read as their defaults.
+std::string flag_of(const ParamSpec& spec);  // "--hash-cell"
+// The value as it is used and recorded (one spelling per value: "064" -> "64", "0.50" -> "0.5",
+// reals to 6 significant digits as the CSV writes numbers), or an empty string with `why` set
+// (without the flag's name: "expected an integer in [4, 1024], got '2'").
+std::string canonical_param_value(const ParamSpec& spec, const std::string& value, std::string& why);
+// The spec's range or choices in words ("an integer in [1, 1000000]", "exact, thesis or field").
+std::string describe_values(const ParamSpec& spec);
+// `spec` with another default or a narrower set of choices (a backend's own view of a shared parameter).
+ParamSpec with_default(ParamSpec spec, const std::string& default_value);
+ParamSpec with_choices(ParamSpec spec, const std::vector<std::string>& choices, const std::string& default_value);
+// The spec named `name` in `specs`; throws Error("internal: ...") when there is none.
+const ParamSpec& find_spec(const std::vector<ParamSpec>& specs, const std::string& name);
+
+// Parameter values by name. On the command side: the values given (validated against the
+// catalogue's specs by the caller); on a backend's side: every parameter it owns, resolved
+// (given or its default), read through the typed accessors, which refuse a parameter the backend
+// does not own (it would silently read nothing).
 class BackendParams {
  public:
-  // Throws Error naming the flag for an unknown parameter or a value its spec does not allow.
-  void set(const std::string& name, const std::string& value);
-  const std::string& get(const std::string& name) const;
+  void set(const std::string& name, const std::string& canonical_value) { values_[name] = canonical_value; }
+  void erase(const std::string& name) { values_.erase(name); }
+  bool has(const std::string& name) const { return values_.count(name) > 0; }
+  const std::map<std::string, std::string>& values() const { return values_; }
+
+  const std::string& text(const std::string& name) const;
   int64_t integer(const std::string& name) const;
-  double real(const std::string& name) const;  // a positive_real parameter given as a number
-  // Whether a parameter of a family other than `backend`'s was given (it would do nothing).
-  std::string misplaced_for(const std::string& backend) const;
+  double real(const std::string& name) const;  // a Real given as a number (not one of its words)
+  bool flag(const std::string& name) const;
+
+  bool operator==(const BackendParams&) const = default;
 
  private:
   std::map<std::string, std::string> values_;

@@ -1,6 +1,6 @@
 #pragma once
 // The one interface every backend implements (DESIGN.md, "Backends"): prepare a scene once,
-// then render frames. Backends are created by name from the same options the CLI and CSV use.
+// then render frames. Backends are declared and created by name in renderers/backend_registry.h.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -10,10 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "renderers/backend_params.h"
-#include "renderers/sdf/mesh_distance_grid.h"
-#include "renderers/sdf/scene_hash.h"
 #include "renderers/sdf/sdf_cache.h"
-#include "renderers/sdf/sphere_tracer.h"
 #include "renderers/work_counters.h"
 #include "scenes/scene.h"
 
@@ -30,23 +27,14 @@ struct BackendOptions {
   // whitted on Vulkan: one ray per pixel per dispatch (true) or each pixel's whole ray tree in one
   // invocation (false); unset: passes only on a device with a loop cap (loop_cap_probe.h).
   std::optional<bool> whitted_passes;
-  // SDF backends: structure and sphere-tracing parameters (the CLI flags of the same names).
-  sdf::MeshGridParams mesh_grid;
-  sdf::SceneHashParams scene_hash;  // defaults: the thesis' octree configuration (table 6.1)
-  bool hash_cell_given = false;     // --hash-cell given; otherwise sdf-hash uses the thesis' cell 1
-  sdf::SphereTraceParams tracing;
-  sdf::CacheOptions cache;          // --cache FILE, --on-bad-cache
-  // Parameters each backend family owns (backend_params.h: sdf-bricks' --voxels, --sdf-format, ...).
+  sdf::CacheOptions cache;  // backends that store a structure: --cache FILE, --on-bad-cache
+  // The backends' own parameters (backend_params.h): on the command side the values given; a
+  // backend receives every parameter it owns, resolved (backend_registry.h, resolve_params).
   BackendParams params;
   // SDF Vulkan backends: #defines prepended to the kernel (the time-breakdown variants of
   // tests/bench/sdf_kernel_bench.cpp); empty for every real run.
   std::string kernel_defines;
 };
-
-// The scene-hash parameters a backend builds with: sdf-hash is the thesis' hash-only
-// configuration (octree depth 0; hash cell 1 unless --hash-cell was given); every other SDF
-// consumer (sdf-octree, sdf-cpu, build) uses options.scene_hash as given.
-sdf::SceneHashParams scene_hash_params_for(const std::string& backend, const BackendOptions& options);
 
 struct FrameRequest {
   uint32_t width = 0;
@@ -105,13 +93,6 @@ class Renderer {
   virtual uint32_t validation_messages() const { return 0; }
   virtual std::optional<StructureStats> structure_stats() const { return std::nullopt; }
 };
-
-const std::vector<std::string>& backend_names();
-bool is_sdf_backend(const std::string& name);  // sdf-hash, sdf-octree, sdf-bricks, sdf-cpu: they sphere-trace
-// Throws Error for an unknown name, listing the known ones.
-void check_backend_name(const std::string& name);
-// Throws Error for an unknown name (as check_backend_name) or a device the backend cannot use.
-std::unique_ptr<Renderer> create_renderer(const std::string& name, const BackendOptions& options);
 
 // "<backend>: lavapipe's loop limit ... cut N pixels short: ..." for a frame with truncated pixels
 // (docs/limits.md "The loop limit"); empty when none were.

@@ -1,5 +1,7 @@
 #include "renderers/bvh/bvh_renderer.h"
 
+#include "renderers/backend_registry.h"
+
 #include <algorithm>
 #include <chrono>
 
@@ -109,6 +111,16 @@ void BvhRenderer::prepare(const Scene& scene) {
   visits_ = {std::max(visits.top, 1u), std::max(visits.meshes, 1u)};
   if (visit_limit_ > 0) visits_ = {std::min(visits.top, visit_limit_), std::min(visits.meshes, visit_limit_)};
   runner_.set_scene(scene, bindings);
+}
+
+BackendInfo bvh_backend() {
+  BackendInfo info;
+  info.name = "bvh";
+  info.kind = "compute-bvh";
+  info.summary = "a two-level SAH BVH (Embree's builder) traversed in a Vulkan compute kernel";
+  info.counters = true;
+  info.create = [](const BackendOptions& options) { return std::make_unique<BvhRenderer>(options); };
+  return info;
 }
 
 }  // namespace sdfbench

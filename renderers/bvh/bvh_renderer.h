@@ -13,6 +13,9 @@ namespace sdfbench {
 // A two-level BVH traced in a Vulkan compute kernel (bvh.comp): the fair triangle baseline for the
 // SDF structures, run the way they are run, on the same device. Built on the CPU by Embree's BVH
 // builder (bvh_builder.h).
+struct BackendInfo;
+BackendInfo bvh_backend();  // its entry in renderers/backend_registry.h
+
 class BvhRenderer : public Renderer {
  public:
   explicit BvhRenderer(const BackendOptions& options);

@@ -1,5 +1,7 @@
 #include "renderers/embree/embree_renderer.h"
 
+#include "renderers/backend_registry.h"
+
 #include "util/cpu_info.h"
 #include "renderers/cpu_frame.h"
 #include "util/error.h"
@@ -114,6 +116,16 @@ bool EmbreeRenderer::any_hit(shading::Ray ray, float tmax, shading::PixelCounts*
 FrameResult EmbreeRenderer::render(const FrameRequest& request) {
   if (!scene_) throw Error("internal: render before prepare");
   return render_cpu_frame(*this, *scene_, make_shading_inputs(*scene_, request), request, threads_, 0u);
+}
+
+BackendInfo embree_backend() {
+  BackendInfo info;
+  info.name = "embree";
+  info.kind = "cpu-bvh";
+  info.summary = "Embree on the CPU: the reference every image is checked against";
+  info.vulkan = false;
+  info.create = [](const BackendOptions& options) { return std::make_unique<EmbreeRenderer>(options); };
+  return info;
 }
 
 }  // namespace sdfbench

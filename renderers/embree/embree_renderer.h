@@ -12,6 +12,9 @@ namespace sdfbench {
 
 // CPU reference: Embree BVH, one scene per mesh plus one instance each, TBB over tiles with
 // an explicit thread count; shading is the GLSL program compiled as C++ (cpu_shading.h).
+struct BackendInfo;
+BackendInfo embree_backend();  // its entry in renderers/backend_registry.h
+
 class EmbreeRenderer : public Renderer {
  public:
   explicit EmbreeRenderer(const BackendOptions& options);

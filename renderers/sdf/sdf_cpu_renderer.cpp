@@ -2,19 +2,17 @@
 
 #include <iostream>
 
-#include "util/cpu_info.h"
+#include "renderers/backend_registry.h"
 #include "renderers/cpu_frame.h"
 #include "renderers/frame_params.h"
+#include "renderers/sdf/sdf_params.h"
+#include "util/cpu_info.h"
 #include "util/error.h"
 
 namespace sdfbench {
 
 SdfCpuRenderer::SdfCpuRenderer(const BackendOptions& options) : options_(options), threads_(cpu_thread_count(options)) {
-  if (options.tracing.cell_bound || options.tracing.storage_tables)
-    throw Error(std::string("sdf-cpu: ") + (options.tracing.cell_bound ? "--cell-bound" : "--storage-tables") +
-                " is an option of the Vulkan SDF kernels (sdf-hash, sdf-octree)");
-  sdf::validate(options.scene_hash);
-  sdf::check_exact_field_hit(options.tracing.hit, "sdf-cpu");
+  sdf::scene_hash_params(options.params);  // validated before the scene is loaded
 }
 
 std::string SdfCpuRenderer::device_name() const { return cpu_model() + " (" + std::to_string(threads_) + " threads)"; }
@@ -22,9 +20,9 @@ std::string SdfCpuRenderer::device_name() const { return cpu_model() + " (" + st
 void SdfCpuRenderer::prepare(const Scene& scene) {
   scene_ = &scene;
   tracer_.reset();
-  sdf_ = std::make_unique<sdf::SceneSdf>(sdf::obtain_scene_sdf(scene, options_.mesh_grid,
-                                                               scene_hash_params_for(name(), options_), options_.cache, std::cerr));
-  tracer_ = std::make_unique<sdf::SphereTracer>(scene, *sdf_, options_.tracing);
+  sdf_ = std::make_unique<sdf::SceneSdf>(sdf::obtain_scene_sdf(scene, sdf::mesh_grid_params(options_.params),
+                                                               sdf::scene_hash_params(options_.params), options_.cache, std::cerr));
+  tracer_ = std::make_unique<sdf::SphereTracer>(scene, *sdf_, sdf::trace_params(options_.params));
 }
 
 std::optional<StructureStats> SdfCpuRenderer::structure_stats() const {
@@ -37,6 +35,23 @@ FrameResult SdfCpuRenderer::render(const FrameRequest& request) {
   const ShadingInputs inputs = make_shading_inputs(*scene_, request);
   tracer_->set_frame(inputs.frame);
   return render_cpu_frame(*tracer_, *scene_, inputs, request, threads_, kSdfCounters);
+}
+
+BackendInfo sdf_cpu_backend() {
+  BackendInfo info;
+  info.name = "sdf-cpu";
+  info.kind = "sdf-cpu";
+  info.summary = "the SDF reference on the CPU: sdf-octree's structure and tracing, for checking the kernels";
+  info.vulkan = false;
+  std::vector<ParamSpec> params = sdf::sdf_params({"hash_cell", "octree_depth", "octree_min_objects", "octree_min_size", "lists",
+                                                   "mesh_cell", "cells_per_extent", "fixed_grid", "hit", "max_steps",
+                                                   "hit_epsilon", "hit_footprint", "over_relax", "max_structure_mb"},
+                                                  {"exact", "thesis"});
+  info.params = std::move(params);
+  info.counters = info.steps = info.stores_structure = true;
+  info.in_table = false;  // slow; for checking the structures
+  info.create = [](const BackendOptions& options) { return std::make_unique<SdfCpuRenderer>(options); };
+  return info;
 }
 
 }  // namespace sdfbench

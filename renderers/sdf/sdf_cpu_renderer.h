@@ -9,6 +9,9 @@ namespace sdfbench {
 
 // The CPU reference for the SDF backends: the scene hash (+ octree) and mesh distance grids,
 // sphere-traced on the CPU with the GPU's parameters. Slow; for checking the structures.
+struct BackendInfo;
+BackendInfo sdf_cpu_backend();  // its entry in renderers/backend_registry.h
+
 class SdfCpuRenderer : public Renderer {
  public:
   explicit SdfCpuRenderer(const BackendOptions& options);

@@ -33,14 +33,6 @@ std::string to_string(HitMode hit) {
   return "?";
 }
 
-void check_exact_field_hit(HitMode hit, const std::string& backend) {
-  const bool sampled = backend == "sdf-bricks" || backend == "sdf-global";
-  if (hit == HitMode::field && !sampled)
-    throw Error("--hit field: " + backend + " has no sampled field (only sdf-bricks and sdf-global); use --hit exact or thesis");
-  if (hit == HitMode::thesis && sampled)
-    throw Error("--hit thesis: " + backend + " takes exact hits (default) or the field's own (--hit field)");
-}
-
 SphereTracer::SphereTracer(const Scene& scene, const SceneSdf& sdf, const SphereTraceParams& params)
     : scene_(scene),
       sdf_(sdf),

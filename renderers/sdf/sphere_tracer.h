@@ -18,9 +18,6 @@ namespace sdfbench::sdf {
 // sdf-global) the sampled field's own zero crossing and gradient normal (brick_trace.glsl).
 enum class HitMode { exact, thesis, field };
 std::string to_string(HitMode hit);
-// Throws Error for --hit field on a backend without a sampled field (all but sdf-bricks and
-// sdf-global), and for --hit thesis on those two.
-void check_exact_field_hit(HitMode hit, const std::string& backend);
 
 struct SphereTraceParams {
   uint32_t max_steps = 512;

@@ -26,16 +26,30 @@ bool use_sampler(const std::string& brick_fetch, const VulkanDeviceInfo& device)
   return device.type != "cpu" || kLavapipeSampler;
 }
 
+std::vector<ParamSpec> brick_field_param_specs() {
+  // Defaults from the measurements in results/lavapipe/ (docs/backends.md, "sdf-bricks", "sdf-global").
+  const std::string group = "sampled fields (sdf-bricks, sdf-global)";
+  return {
+      {"sdf_format", ParamKind::Choice, "f32", "stored field values: f32, f16 or u8 (a band-relative UNORM)", group,
+       {"f32", "f16", "u8"}},
+      {"brick_band", ParamKind::Integer, "4", "bricks within this many voxels of the surface are stored", group, {}, 1, 16},
+      {"brick_fetch", ParamKind::Choice, "auto",
+       "texel: 8 texel-buffer fetches and the trilinear in the kernel; sampler: the atlas as a 3D image the sampler "
+       "filters; auto: by device, from the measurement (docs/backends.md, \"sdf-bricks\"); the row's backend_resolved says which",
+       group, {"auto", "texel", "sampler"}},
+  };
+}
+
 sdf::SdfFormat sdf_format_param(const BackendParams& params) {
-  const std::string& format = params.get("sdf_format");
+  const std::string& format = params.text("sdf_format");
   return format == "f16" ? sdf::SdfFormat::f16 : format == "u8" ? sdf::SdfFormat::u8 : sdf::SdfFormat::f32;
 }
 
 std::string brick_kernel_defines(const BackendOptions& options, bool sampler) {
   std::string defines = sampler ? "#define BRICK_SAMPLER 1\n" : "";
-  if (options.tracing.hit == sdf::HitMode::field) defines += "#define BRICK_HIT_FIELD 1\n";
-  if (options.params.get("sdf_format") == "u8") defines += "#define BRICK_U8 1\n";
-  if (options.tracing.storage_tables) defines += "#define SDF_STORAGE_TABLES 1\n";
+  if (options.params.text("hit") == "field") defines += "#define BRICK_HIT_FIELD 1\n";
+  if (options.params.text("sdf_format") == "u8") defines += "#define BRICK_U8 1\n";
+  if (options.params.flag("storage_tables")) defines += "#define SDF_STORAGE_TABLES 1\n";
   return defines;
 }
 

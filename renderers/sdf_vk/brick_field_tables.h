@@ -23,7 +23,9 @@ bool use_sampler(const std::string& brick_fetch, const VulkanDeviceInfo& device)
 // hit lies within a fraction of a voxel, on either side).
 inline constexpr float kFieldHitOffsetVoxels = 2.0f;
 
-// --sdf-format.
+// --sdf-format, --brick-band and --brick-fetch: the parameters both sampled fields own (their
+// declarations; renderers/backend_params.h).
+std::vector<ParamSpec> brick_field_param_specs();
 sdf::SdfFormat sdf_format_param(const BackendParams& params);
 
 // The defines both sampled-field kernels take: the fetch path, --hit field, u8 values, storage tables.

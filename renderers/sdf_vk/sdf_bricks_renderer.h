@@ -4,6 +4,8 @@
 
 #include "renderers/renderer.h"
 #include "renderers/sdf/brick_field.h"
+#include "renderers/sdf/scene_hash.h"
+#include "renderers/sdf/sphere_tracer.h"
 #include "renderers/sdf_vk/brick_field_tables.h"
 #include "renderers/sdf_vk/sdf_gpu_tables.h"
 #include "renderers/vulkan/vulkan_context.h"
@@ -14,6 +16,9 @@ namespace sdfbench {
 // sdf-bricks (issue 28): the thesis' scene hash and octree lists (as sdf-octree) over per-mesh
 // sampled brick fields (renderers/sdf/brick_field.h), sphere-traced in sdf_bricks.comp. Its
 // parameters are its own (backend_params.h): --voxels, --sdf-format, --brick-band, --brick-trace.
+struct BackendInfo;
+BackendInfo sdf_bricks_backend();  // its entry in renderers/backend_registry.h
+
 class SdfBricksRenderer : public Renderer {
  public:
   explicit SdfBricksRenderer(const BackendOptions& options);
@@ -28,6 +33,8 @@ class SdfBricksRenderer : public Renderer {
  private:
   BackendOptions options_;
   sdf::BrickFieldParams field_params_;
+  sdf::SceneHashParams hash_params_;
+  sdf::SphereTraceParams tracing_;
   std::optional<StructureStats> stats_;  // mesh grids + scene hash + brick fields
   VulkanContext context_;
   SdfGpuTables tables_;

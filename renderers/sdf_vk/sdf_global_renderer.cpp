@@ -4,7 +4,9 @@
 #include <limits>
 #include <sstream>
 
+#include "renderers/backend_registry.h"
 #include "renderers/sdf/sdf_cache.h"
+#include "renderers/sdf/sdf_params.h"
 #include "renderers/sdf_vk/brick_gpu_arrays.h"
 #include "renderers/sdf_vk/sdf_gpu_arrays.h"
 #include "util/error.h"
@@ -25,11 +27,24 @@ std::vector<uint32_t> flatten_lists(const sdf::GlobalField& global) {
   return words;
 }
 
+// sdf-global reads no scene hash: one cell over the scene, no octree, the cheap list rule (the
+// shared structure cache still holds a hash; this one costs next to nothing to build).
+sdf::SceneHashParams one_cell_hash(const Scene& scene, uint64_t max_bytes) {
+  const Aabb bounds = scene.instance_bounds();
+  const glm::vec3 extent = bounds.empty() ? glm::vec3(0.0f) : bounds.extent();
+  sdf::SceneHashParams p;
+  p.hash_cell = std::max(1.0f, 1.001f * std::max(extent.x, std::max(extent.y, extent.z)));
+  p.octree_depth = 0;
+  p.lists = sdf::ListRule::Thesis;
+  p.max_bytes = max_bytes;
+  return p;
+}
+
 }  // namespace
 
 sdf::GlobalFieldParams global_field_params(const BackendParams& params, uint64_t max_bytes) {
   sdf::GlobalFieldParams p;
-  p.voxel = params.get("global_voxel") == "auto" ? 0.0f : static_cast<float>(params.real("global_voxel"));
+  p.voxel = params.text("global_voxel") == "auto" ? 0.0f : static_cast<float>(params.real("global_voxel"));
   p.band = static_cast<uint32_t>(params.integer("brick_band"));
   p.format = sdf_format_param(params);
   p.max_bytes = max_bytes;
@@ -39,17 +54,13 @@ sdf::GlobalFieldParams global_field_params(const BackendParams& params, uint64_t
 
 SdfGlobalRenderer::SdfGlobalRenderer(const BackendOptions& options)
     : options_(options),
-      field_params_(global_field_params(options.params, options.mesh_grid.max_bytes)),
+      field_params_(global_field_params(options.params, sdf::max_structure_bytes(options.params))),
+      tracing_(sdf::trace_params(options.params)),
       context_(VulkanContext::Options{options.device, options.validation}),
-      sampler_(use_sampler(options.params.get("brick_fetch"), context_.info())),
+      sampler_(use_sampler(options.params.text("brick_fetch"), context_.info())),
       runner_(context_,
               compute_tile_kernels(context_, "sdf_global.comp", brick_kernel_defines(options, sampler_) + options.kernel_defines),
-              kBrickCounters, options.whitted_passes) {
-  sdf::validate(options_.scene_hash);
-  sdf::check_exact_field_hit(options_.tracing.hit, name());
-  if (options_.tracing.cell_bound) throw Error("--cell-bound: sdf-global has no scene hash cells; its field bounds empty space");
-  if (options_.tracing.over_relax != 1.0f) throw Error("--over-relax: sdf-global steps by a bound of its field, not over-relaxed");
-}
+              kBrickCounters, options.whitted_passes) {}
 
 void SdfGlobalRenderer::prepare(const Scene& scene) {
   SdfGpuArrays arrays;
@@ -57,9 +68,9 @@ void SdfGlobalRenderer::prepare(const Scene& scene) {
   std::vector<uint32_t> lists;
   {  // the CPU structures are freed once flattened
     const sdf::SceneSdf sdf =
-        sdf::obtain_scene_sdf(scene, options_.mesh_grid, options_.scene_hash, options_.cache, std::cerr, nullptr, &field_params_);
-    // What the kernel reads: the mesh grids (exact hits) and the global field with its lists. (The
-    // scene hash, built for the cache the other SDF backends share, is neither uploaded nor counted.)
+        sdf::obtain_scene_sdf(scene, sdf::mesh_grid_params(options_.params), one_cell_hash(scene, field_params_.max_bytes),
+                              options_.cache, std::cerr, nullptr, &field_params_);
+    // What the kernel reads: the mesh grids (exact hits) and the global field with its lists.
     double ms = sdf.global_field.build_ms;
     size_t bytes = sdf.global_field.bytes();
     for (const sdf::MeshDistanceGrid& grid : sdf.mesh_grids) ms += grid.build_ms, bytes += grid.bytes();
@@ -68,22 +79,43 @@ void SdfGlobalRenderer::prepare(const Scene& scene) {
     resolved << "brick_fetch=" << (sampler_ ? "sampler" : "texel") << " voxel=" << sdf.global_field.field.voxel;
     stats_ = StructureStats{ms, bytes, {}, resolved.str()};
     stats_->instance_voxels.assign(scene.instances.size(), sdf.global_field.field.voxel);
-    arrays = flatten_for_gpu(scene, sdf, options_.tracing);
+    arrays = flatten_for_gpu(scene, sdf, tracing_);
     arrays.hash_cells = {0u};
     arrays.octree_nodes = {0u};
     arrays.instance_lists = {0u, 0u};
-    arrays.params.options.y = options_.tracing.hit == sdf::HitMode::field ? kFieldHitOffsetVoxels * sdf.global_field.field.voxel : 0.0f;
+    arrays.params.options.y = tracing_.hit == sdf::HitMode::field ? kFieldHitOffsetVoxels * sdf.global_field.field.voxel : 0.0f;
     field = flatten_brick_fields({sdf.global_field.field});
     lists = flatten_lists(sdf.global_field);
   }
   const char* hint = "a larger --global-voxel, a narrower --brick-band or --sdf-format f16/u8 need less";
   field_tables_ = BrickFieldTables(context_, field, sampler_, arrays.params, hint);
   brick_lists_ = upload_table(context_, lists, VK_FORMAT_R32_UINT, 4, false, "global field instance lists", hint);
-  tables_ = SdfGpuTables(context_, arrays, options_.tracing.storage_tables);  // after the atlas layout is in the params
+  tables_ = SdfGpuTables(context_, arrays, tracing_.storage_tables);  // after the atlas layout is in the params
   std::vector<KernelBinding> bindings = tables_.bindings();
   field_tables_.add_bindings(bindings);
   bindings.push_back({22, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, &brick_lists_});
   runner_.set_scene(scene, bindings);
+}
+
+BackendInfo sdf_global_backend() {
+  BackendInfo info;
+  info.name = "sdf-global";
+  info.kind = "sdf-sampled";
+  info.summary = "one sampled field over the whole scene (UE5's global distance field), exact hits on the mesh grids";
+  // No scene hash, cell bounds or over-relaxation: one field bounds all of space.
+  info.params = sdf::sdf_params({"mesh_cell", "cells_per_extent", "fixed_grid", "hit", "max_steps", "storage_tables"},
+                                {"exact", "field"});
+  info.params.push_back({"global_voxel", ParamKind::Real, "auto",
+                         "the global field's voxel in world units; auto: the median instance's largest extent / 10 "
+                         "(docs/backends.md, \"sdf-global\")",
+                         "sampled fields (sdf-bricks, sdf-global)", {"auto"}, 1e-6, 1e9});
+  for (const ParamSpec& spec : brick_field_param_specs()) info.params.push_back(spec);
+  info.params.push_back(sdf::sdf_params({"max_structure_mb"}, {"exact"}).front());
+  info.counters = info.steps = info.stores_structure = true;
+  info.partners = {{"sdf-octree", "one sampled scene-wide field against the thesis' structure"},
+                   {"bvh", "one sampled scene-wide field against a BVH in a compute kernel"}};
+  info.create = [](const BackendOptions& options) { return std::make_unique<SdfGlobalRenderer>(options); };
+  return info;
 }
 
 }  // namespace sdfbench

@@ -4,6 +4,7 @@
 
 #include "renderers/renderer.h"
 #include "renderers/sdf/global_field.h"
+#include "renderers/sdf/sphere_tracer.h"
 #include "renderers/sdf_vk/brick_field_tables.h"
 #include "renderers/sdf_vk/sdf_gpu_tables.h"
 #include "renderers/vulkan/vulkan_context.h"
@@ -16,6 +17,9 @@ namespace sdfbench {
 // instances; near a surface the instances its brick lists are intersected exactly (the mesh
 // grids' triangle lists), or --hit field takes the field's own crossing. Its parameters
 // (backend_params.h): --global-voxel, --sdf-format, --brick-band, --brick-fetch.
+struct BackendInfo;
+BackendInfo sdf_global_backend();  // its entry in renderers/backend_registry.h
+
 class SdfGlobalRenderer : public Renderer {
  public:
   explicit SdfGlobalRenderer(const BackendOptions& options);
@@ -30,6 +34,7 @@ class SdfGlobalRenderer : public Renderer {
  private:
   BackendOptions options_;
   sdf::GlobalFieldParams field_params_;
+  sdf::SphereTraceParams tracing_;
   std::optional<StructureStats> stats_;  // mesh grids + the global field and its lists
   VulkanContext context_;
   bool sampler_ = false;  // --brick-fetch, resolved

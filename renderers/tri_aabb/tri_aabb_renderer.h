@@ -9,6 +9,9 @@
 namespace sdfbench {
 
 // Vulkan compute, per-instance AABB then every triangle (thesis table 6.3).
+struct BackendInfo;
+BackendInfo tri_aabb_backend();  // its entry in renderers/backend_registry.h
+
 class TriAabbRenderer : public Renderer {
  public:
   explicit TriAabbRenderer(const BackendOptions& options);

@@ -1,5 +1,7 @@
 #include "renderers/vk_rt/vk_rt_renderer.h"
 
+#include "renderers/backend_registry.h"
+
 #include <chrono>
 
 #include "renderers/vk_rt/rt_pipeline.h"
@@ -37,6 +39,15 @@ void VkRtRenderer::prepare(const Scene& scene) {
   structure.acceleration_structure = structures_->top_level();
   bindings.push_back(structure);
   runner_->set_scene(scene, bindings);
+}
+
+BackendInfo vk_rt_backend() {
+  BackendInfo info;
+  info.name = "vk-rt";
+  info.kind = "driver-rt";
+  info.summary = "the driver's own ray tracing (VK_KHR_ray_tracing_pipeline)";
+  info.create = [](const BackendOptions& options) { return std::make_unique<VkRtRenderer>(options); };
+  return info;
 }
 
 }  // namespace sdfbench

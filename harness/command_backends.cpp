@@ -1,0 +1,72 @@
+// `sdfbench backends`: the registry (renderers/backend_registry.h) as text or JSON, so that
+// scripts take their lists of backends and parameters from it rather than from copies.
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/cli_common.h"
+#include "harness/commands.h"
+
+namespace sdfbench {
+namespace {
+
+const char* kind_name(ParamKind kind) {
+  switch (kind) {
+    case ParamKind::Integer: return "integer";
+    case ParamKind::Real: return "real";
+    case ParamKind::Choice: return "choice";
+    case ParamKind::Flag: return "flag";
+  }
+  return "?";
+}
+
+nlohmann::json param_json(const ParamSpec& spec) {
+  nlohmann::json p = {{"name", spec.name},       {"flag", flag_of(spec)},   {"kind", kind_name(spec.kind)},
+                      {"default", spec.default_value}, {"help", spec.help}, {"group", spec.group},
+                      {"values", describe_values(spec)}};
+  if (!spec.choices.empty()) p["choices"] = spec.choices;
+  if (spec.kind == ParamKind::Integer || spec.kind == ParamKind::Real) p["range"] = {spec.lo, spec.hi};
+  if (!spec.only_when_param.empty()) p["only_when"] = {{spec.only_when_param, spec.only_when_value}};
+  return p;
+}
+
+void print_json() {
+  nlohmann::json out = {{"backends", nlohmann::json::array()}, {"default_table_backends", default_table_backends()}};
+  for (const BackendInfo& b : backends()) {
+    nlohmann::json entry = {{"name", b.name},
+                            {"kind", b.kind},
+                            {"summary", b.summary},
+                            {"device", b.vulkan ? "vulkan" : "cpu"},
+                            {"counters", b.counters},
+                            {"steps", b.steps},
+                            {"stores_structure", b.stores_structure},
+                            {"in_table", b.in_table},
+                            {"params", nlohmann::json::array()},
+                            {"partners", nlohmann::json::array()}};
+    for (const ParamSpec& spec : b.params) entry["params"].push_back(param_json(spec));
+    for (const BackendPartner& p : b.partners) entry["partners"].push_back({{"other", p.other}, {"what", p.what}});
+    out["backends"].push_back(entry);
+  }
+  std::cout << out.dump(2) << "\n";
+}
+
+void print_text() {
+  for (const BackendInfo& b : backends()) {
+    std::cout << b.name << " (" << b.kind << ", " << (b.vulkan ? "Vulkan" : "CPU") << (b.in_table ? "" : ", not in `table` by default")
+              << "): " << b.summary << "\n";
+    if (b.params.empty()) std::cout << "  parameters: none\n";
+    for (const ParamSpec& spec : b.params)
+      std::cout << "  " << flag_of(spec) << " = " << spec.default_value << "  (" << describe_values(spec) << ")\n";
+  }
+}
+
+}  // namespace
+
+void register_backends_command(CLI::App& app) {
+  auto json = std::make_shared<bool>(false);
+  CLI::App* cmd = app.add_subcommand("backends", "List the backends, what they support and the parameters each owns");
+  cmd->add_flag("--json", *json, "as JSON (names, kinds, parameters with defaults, ranges and choices; for scripts)");
+  cmd->callback([json] { *json ? print_json() : print_text(); });
+}
+
+}  // namespace sdfbench

@@ -1,0 +1,152 @@
+#include "renderers/backend_registry.h"
+
+#include <algorithm>
+#include <set>
+
+#include "renderers/bvh/bvh_renderer.h"
+#include "renderers/embree/embree_renderer.h"
+#include "renderers/sdf/sdf_cpu_renderer.h"
+#include "renderers/sdf_vk/sdf_bricks_renderer.h"
+#include "renderers/sdf_vk/sdf_global_renderer.h"
+#include "renderers/sdf_vk/sdf_vk_renderer.h"
+#include "renderers/tri_aabb/tri_aabb_renderer.h"
+#include "renderers/vk_rt/vk_rt_renderer.h"
+#include "util/error.h"
+
+namespace sdfbench {
+namespace {
+
+struct Registry {
+  std::vector<BackendInfo> backends;
+  std::vector<ParamSpec> catalogue;
+
+  void add(BackendInfo info) {
+    for (const BackendInfo& b : backends)
+      if (b.name == info.name) throw Error("a backend named '" + info.name + "' is already registered");
+    if (!info.create) throw Error("backend '" + info.name + "' has no factory");
+    for (const ParamSpec& spec : info.params) {
+      auto same = std::find_if(catalogue.begin(), catalogue.end(), [&](const ParamSpec& s) { return s.name == spec.name; });
+      if (same == catalogue.end()) {
+        catalogue.push_back(spec);
+        continue;
+      }
+      if (same->kind != spec.kind)
+        throw Error("backend '" + info.name + "': parameter '" + spec.name + "' is declared with another kind by " +
+                    owners_of_in(spec.name));
+      for (const std::string& c : spec.choices)  // the flag takes every backend's choices; each backend checks its own
+        if (std::find(same->choices.begin(), same->choices.end(), c) == same->choices.end()) same->choices.push_back(c);
+    }
+    backends.push_back(std::move(info));
+  }
+
+  std::string owners_of_in(const std::string& param) const {
+    std::string text;
+    for (const BackendInfo& b : backends)
+      if (owns(b, param)) text += (text.empty() ? "" : ", ") + b.name;
+    return text;
+  }
+};
+
+Registry& registry() {
+  static Registry r = [] {
+    Registry built;
+    for (BackendInfo& info : std::vector<BackendInfo>{embree_backend(), tri_aabb_backend(), bvh_backend(), vk_rt_backend(),
+                                                       sdf_hash_backend(), sdf_octree_backend(), sdf_bricks_backend(),
+                                                       sdf_global_backend(), sdf_cpu_backend()})
+      built.add(std::move(info));
+    return built;
+  }();
+  return r;
+}
+
+std::string join(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& n : names) text += (text.empty() ? "" : ", ") + n;
+  return text;
+}
+
+}  // namespace
+
+const std::vector<BackendInfo>& backends() { return registry().backends; }
+
+void register_backend(BackendInfo info) { registry().add(std::move(info)); }
+
+const BackendInfo& backend_info(const std::string& name) {
+  for (const BackendInfo& b : backends())
+    if (b.name == name) return b;
+  throw Error("unknown backend '" + name + "' (available: " + backend_list() + ")");
+}
+
+void check_backend_name(const std::string& name) { backend_info(name); }
+
+std::vector<std::string> backend_names() {
+  std::vector<std::string> names;
+  for (const BackendInfo& b : backends()) names.push_back(b.name);
+  return names;
+}
+
+std::string backend_list() { return join(backend_names()); }
+
+std::string default_table_backends() {
+  std::string text;
+  for (const BackendInfo& b : backends())
+    if (b.in_table) text += (text.empty() ? "" : ",") + b.name;
+  return text;
+}
+
+const std::vector<ParamSpec>& param_catalogue() { return registry().catalogue; }
+
+const ParamSpec& catalogue_spec(const std::string& name) {
+  for (const ParamSpec& spec : param_catalogue())
+    if (spec.name == name) return spec;
+  throw Error("unknown backend parameter '" + name + "'");
+}
+
+bool owns(const BackendInfo& backend, const std::string& param) {
+  return std::any_of(backend.params.begin(), backend.params.end(), [&](const ParamSpec& s) { return s.name == param; });
+}
+
+std::string owners_of(const std::string& param) { return registry().owners_of_in(param); }
+
+void check_params_taken(const BackendParams& given, const std::vector<std::string>& run_backends) {
+  for (const auto& [name, value] : given.values()) {
+    const bool taken = std::any_of(run_backends.begin(), run_backends.end(),
+                                   [&](const std::string& b) { return owns(backend_info(b), name); });
+    if (!taken)
+      throw Error(flag_of(catalogue_spec(name)) + " is a parameter of " + owners_of(name) + "; no backend of this run (" +
+                  join(run_backends) + ") takes it");
+  }
+}
+
+BackendParams resolve_params(const BackendInfo& backend, const BackendParams& given) {
+  BackendParams resolved;
+  for (const ParamSpec& spec : backend.params) {
+    if (!given.has(spec.name)) {
+      resolved.set(spec.name, spec.default_value);
+      continue;
+    }
+    std::string why;
+    const std::string value = canonical_param_value(spec, given.text(spec.name), why);
+    if (!why.empty()) throw Error(flag_of(spec) + " " + given.text(spec.name) + ": " + backend.name + " takes " + describe_values(spec));
+    resolved.set(spec.name, value);
+  }
+  return resolved;
+}
+
+std::map<std::string, std::string> recorded_params(const BackendInfo& backend, const BackendParams& resolved) {
+  std::map<std::string, std::string> out;
+  for (const ParamSpec& spec : backend.params)
+    if (spec.only_when_param.empty() || !resolved.has(spec.only_when_param) ||
+        resolved.text(spec.only_when_param) == spec.only_when_value)
+      out[spec.name] = resolved.text(spec.name);
+  return out;
+}
+
+std::unique_ptr<Renderer> create_renderer(const std::string& name, const BackendOptions& options) {
+  const BackendInfo& info = backend_info(name);
+  BackendOptions own = options;
+  own.params = resolve_params(info, options.params);
+  return info.create(own);
+}
+
+}  // namespace sdfbench
