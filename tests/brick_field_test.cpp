@@ -7,8 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include "harness/cli_common.h"
 #include "harness/csv.h"
 #include "harness/image_agreement.h"
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "renderers/sdf/brick_field.h"
 #include "renderers/sdf_vk/brick_gpu_arrays.h"
@@ -162,14 +164,12 @@ TEST(BrickField, FormatsStoreTheSameBricksInFewerBytes) {
 TEST(BrickField, ParametersOutsideTheirRangesAreErrors) {
   EXPECT_THROW(sdf::validate(sdf::BrickFieldParams{2, 4}), Error);
   EXPECT_THROW(sdf::validate(sdf::BrickFieldParams{64, 0}), Error);
-  BackendParams params;
-  EXPECT_THROW(params.set("voxels", "2"), Error);
-  EXPECT_THROW(params.set("voxels", "64x"), Error);
-  EXPECT_THROW(params.set("sdf_format", "f64"), Error);
-  EXPECT_THROW(params.set("brick_trace", "both"), Error);
-  params.set("voxels", "0128");
-  EXPECT_EQ(params.get("voxels"), "128");  // one spelling: one configuration key
-  EXPECT_EQ(params.get("sdf_format"), "f32");
+  EXPECT_THROW(parse_param_value(catalogue_spec("voxels"), "2"), Error);
+  EXPECT_THROW(parse_param_value(catalogue_spec("voxels"), "64x"), Error);
+  EXPECT_THROW(parse_param_value(catalogue_spec("sdf_format"), "f64"), Error);
+  EXPECT_THROW(parse_param_value(catalogue_spec("brick_trace"), "both"), Error);
+  EXPECT_EQ(parse_param_value(catalogue_spec("voxels"), "0128"), "128");  // one spelling: one configuration key
+  EXPECT_EQ(resolve_params(backend_info("sdf-bricks"), BackendParams{}).text("sdf_format"), "f32");
 }
 
 // Every trace mode and format draws what Embree draws (exact hits), in primary and shadow.
@@ -223,7 +223,7 @@ TEST(SdfBricks, FieldHitsReportTheirAccuracyInVoxels) {
   const FrameImages expected = test::render_frame("embree", scene, RenderMode::Primary, 160, 90);
   for (const char* trace : {"instance", "min"}) {
     BackendOptions field_options, exact_options;
-    field_options.tracing.hit = sdf::HitMode::field;
+    field_options.params.set("hit", "field");
     field_options.params.set("brick_trace", trace);
     exact_options.params.set("brick_trace", trace);
     field_options.params.set("voxels", "64");  // (p99 1.2 voxels here; 2.4 at 128, where grazing pixels weigh more)

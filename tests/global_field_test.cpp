@@ -10,8 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include "harness/cli_common.h"
 #include "harness/csv.h"
 #include "harness/image_agreement.h"
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "renderers/sdf/global_field.h"
 #include "renderers/sdf/scene_hash.h"
@@ -158,15 +160,14 @@ INSTANTIATE_TEST_SUITE_P(Scenes, GlobalFieldVsBruteForce,
                          case_name);
 
 TEST(GlobalField, ParametersAndLimitsAreErrorsNamingTheFlag) {
-  BackendParams params;
-  EXPECT_THROW(params.set("global_voxel", "0"), Error);
-  EXPECT_THROW(params.set("global_voxel", "-1"), Error);
-  EXPECT_THROW(params.set("global_voxel", "0.5x"), Error);
-  EXPECT_THROW(params.set("global_voxel", "nan"), Error);
-  params.set("global_voxel", "0.50");
-  EXPECT_EQ(params.get("global_voxel"), "0.5");  // one spelling: one configuration key
-  params.set("global_voxel", "auto");
-  EXPECT_EQ(params.get("global_voxel"), "auto");
+  const ParamSpec& voxel = catalogue_spec("global_voxel");
+  EXPECT_THROW(parse_param_value(voxel, "0"), Error);
+  EXPECT_THROW(parse_param_value(voxel, "-1"), Error);
+  EXPECT_THROW(parse_param_value(voxel, "0.5x"), Error);
+  EXPECT_THROW(parse_param_value(voxel, "nan"), Error);
+  EXPECT_THROW(parse_param_value(voxel, "1e-50"), Error);  // below the range: never measured as another value
+  EXPECT_EQ(parse_param_value(voxel, "0.50"), "0.5");  // one spelling: one configuration key
+  EXPECT_EQ(parse_param_value(voxel, "auto"), "auto");
 
   const Scene scene = make_thesis_scene({"sphere", 4, 1});
   sdf::SceneHashParams hash;
@@ -225,7 +226,7 @@ TEST(SdfGlobal, FieldHitsReportTheirAccuracyInVoxels) {
   const Scene scene = make_thesis_scene({"bunny", 10, 1});
   const FrameImages expected = test::render_frame("embree", scene, RenderMode::Primary, 160, 90);
   BackendOptions field_options, exact_options;
-  field_options.tracing.hit = sdf::HitMode::field;
+  field_options.params.set("hit", "field");
   auto field = create_renderer("sdf-global", field_options);
   auto exact = create_renderer("sdf-global", exact_options);
   field->prepare(scene);

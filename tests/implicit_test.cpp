@@ -6,6 +6,7 @@
 
 #include "harness/image_agreement.h"
 #include "renderers/frame_params.h"
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "renderers/shading/cpu_shading.h"
 #include "scenes/scene_loader.h"

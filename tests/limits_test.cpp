@@ -12,6 +12,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "renderers/backend_registry.h"
 #include "renderers/bvh/bvh_renderer.h"
 #include "renderers/frame_params.h"
 #include "scenes/scene_loader.h"

@@ -9,6 +9,7 @@
 
 #include "harness/benchmark_runner.h"
 #include "harness/image_agreement.h"
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "renderers/vulkan/loop_cap_probe.h"
 #include "scenes/thesis_layout.h"

@@ -19,6 +19,7 @@
 
 #include "harness/csv.h"
 #include "harness/measurement.h"
+#include "renderers/backend_registry.h"
 #include "scenes/mesh.h"
 #include "tests/test_support.h"
 #include "util/atomic_file.h"
@@ -327,8 +328,10 @@ TEST(OutputSafety, ConfigurationKeyCoversEveryMeasurementParameter) {
     EXPECT_NE(std::find(key.begin(), key.end(), column), key.end()) << column;
   const std::vector<std::string>& columns = measurement_columns();
   for (const std::string& column : key) EXPECT_NE(std::find(columns.begin(), columns.end(), column), columns.end()) << column;
+  for (const ParamSpec& spec : param_catalogue())  // every backend's parameter
+    EXPECT_NE(std::find(key.begin(), key.end(), spec.name), key.end()) << spec.name;
   Measurement a, b;
-  b.max_steps = 100;
+  b.backend_params["max_steps"] = "100";
   EXPECT_NE(configuration_key(a), configuration_key(b));
   b = a;
   b.requested_device = "gpu";

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "harness/image_agreement.h"
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "renderers/sdf/scene_hash.h"
 #include "scenes/random.h"
@@ -125,7 +126,11 @@ TEST(SceneHash, BuildIsDeterministic) {
 // The CPU sphere tracer's primary frame vs Embree's at 160x90.
 Agreement sdf_cpu_vs_embree(const Scene& scene, const sdf::SceneHashParams& params) {
   BackendOptions options;
-  options.scene_hash = params;
+  options.params.set("hash_cell", std::to_string(params.hash_cell));
+  options.params.set("octree_depth", std::to_string(params.octree_depth));
+  options.params.set("octree_min_objects", std::to_string(params.octree_min_objects));
+  options.params.set("octree_min_size", std::to_string(params.octree_min_size));
+  options.params.set("lists", params.lists == sdf::ListRule::Thesis ? "thesis" : "exact");
   auto reference = create_renderer("embree", options);
   auto traced = create_renderer("sdf-cpu", options);
   reference->prepare(scene);

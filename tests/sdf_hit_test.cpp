@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "harness/image_agreement.h"
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "renderers/shading/gpu_types.h"
 #include "scenes/thesis_layout.h"
@@ -141,7 +142,7 @@ TEST(SdfHit, GrazingRaysThatRunOutOfStepsStillHit) {
   add_instance(scene, add_mesh(scene, panel(16, 40.0f)), {0.0f, 0.0f, 0.0f}, 1.0f, 0);
   scene.camera = Camera{.position = {0.0f, 0.3f, 18.0f}, .look_at = {0.0f, 0.3f - std::tan(glm::radians(2.0f)), 17.0f}};
   BackendOptions options;
-  options.tracing.max_steps = kGrazingSteps;
+  options.params.set("max_steps", std::to_string(kGrazingSteps));
   auto cpu = create_renderer("sdf-cpu", options);
   cpu->prepare(scene);
   const FrameResult frame = cpu->render(FrameRequest{96, 54, RenderMode::Primary, false, {}, true});
@@ -158,9 +159,8 @@ TEST(SdfHit, ScalesAThousandthAndAThousandInOneScene) {
   // Structures sized for the large bunny (the defaults, cell 10 down to nodes of 1, would refine
   // its 1500-unit extent into billions of nodes).
   BackendOptions options;
-  options.scene_hash.hash_cell = 200.0f;
-  options.hash_cell_given = true;
-  options.scene_hash.octree_depth = 2;
+  options.params.set("hash_cell", "200.0");
+  options.params.set("octree_depth", "2");
   scene.camera = Camera{.position = {0.002f, 0.001f, 0.006f}, .look_at = {0.002f, 0.0f, 0.0f}};  // the small ones
   expect_agreement(scene, options);
   scene.camera = Camera{.position = {0.0f, 500.0f, 1500.0f}, .look_at = {0.0f, 0.0f, -4000.0f}};  // the large one
@@ -184,9 +184,8 @@ TEST(SdfHit, RayOffsetsFollowTheHitNotTheScene) {
   add_instance(scene, add_mesh(scene, load_obj(builtin_mesh_path("bunny"), "bunny")), {0.0f, 0.0f, -4000.0f}, 1000.0f, 0);
   scene.camera = Camera{.position = {0.0f, 0.008f, 0.008f}, .look_at = {0.0f, 0.0f, 0.0f}};
   BackendOptions options;  // sized for the large bunny, as above
-  options.scene_hash.hash_cell = 200.0f;
-  options.hash_cell_given = true;
-  options.scene_hash.octree_depth = 2;
+  options.params.set("hash_cell", "200.0");
+  options.params.set("octree_depth", "2");
   for (const char* backend : {"embree", "tri-aabb", "sdf-cpu", "sdf-hash", "sdf-octree"}) {
     SCOPED_TRACE(backend);
     auto renderer = create_renderer(backend, options);
@@ -224,8 +223,7 @@ TEST(SdfHit, InsideABoxWhoseWallsLieOnHashCellFaces) {
   for (float cell : {0.5f, 1.0f, 2.0f, 4.0f}) {
     SCOPED_TRACE("hash cell " + std::to_string(cell));
     BackendOptions options;
-    options.scene_hash.hash_cell = cell;
-    options.hash_cell_given = true;
+    options.params.set("hash_cell", std::to_string(cell));
     expect_agreement(scene, options);
   }
 }
@@ -251,7 +249,7 @@ TEST(SdfHit, ThesisBunnyThousandWhitted) {
 TEST(SdfHit, ThesisHitModeStaysSelectable) {
   const Scene scene = make_thesis_scene({"bunny", 10, 1});
   BackendOptions thesis;
-  thesis.tracing.hit = sdf::HitMode::thesis;
+  thesis.params.set("hit", "thesis");
   auto exact = create_renderer("sdf-octree", BackendOptions{});
   auto old = create_renderer("sdf-octree", thesis);
   exact->prepare(scene);

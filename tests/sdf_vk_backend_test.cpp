@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "harness/image_agreement.h"
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "renderers/work_counters.h"
 #include "renderers/shading/gpu_types.h"
@@ -78,7 +79,7 @@ TEST(SdfVkVsCpu, SameHitsAsTheCpuSphereTracer) {
 TEST(SdfOptions, OverRelaxationDrawsTheSameAndTracesAsTheCpu) {
   const Scene scene = make_thesis_scene({"bunny", 100, 1});
   BackendOptions plain_options, relaxed;
-  relaxed.tracing.over_relax = 1.6f;
+  relaxed.params.set("over_relax", "1.6");
   relaxed.validation = true;
   auto plain = create_renderer("sdf-octree", plain_options);
   auto gpu = create_renderer("sdf-octree", relaxed);
@@ -104,10 +105,10 @@ TEST(SdfOptions, CellBoundSkipsInstancesAndDrawsTheSame) {
   for (const char* backend : {"sdf-octree", "sdf-hash"}) {
     SCOPED_TRACE(backend);
     BackendOptions plain_options, bounded, both;
-    bounded.tracing.cell_bound = true;
+    bounded.params.set("cell_bound", "1");
     bounded.validation = true;
     both = bounded;  // a relaxed step into a skipped leaf is checked too
-    both.tracing.over_relax = 1.8f;
+    both.params.set("over_relax", "1.8");
     auto plain = create_renderer(backend, plain_options);
     auto gpu = create_renderer(backend, bounded);
     auto relaxed = create_renderer(backend, both);
@@ -127,7 +128,7 @@ TEST(SdfOptions, CellBoundSkipsInstancesAndDrawsTheSame) {
     EXPECT_EQ(gpu->validation_messages() + relaxed->validation_messages(), 0u);
   }
   BackendOptions bounded;
-  bounded.tracing.cell_bound = true;
+  bounded.params.set("cell_bound", "1");
   try {
     create_renderer("sdf-cpu", bounded);
     ADD_FAILURE() << "sdf-cpu accepted --cell-bound";
@@ -144,7 +145,7 @@ TEST(SdfOptions, StorageTablesDrawExactlyTheSame) {
   {  // sdf-hash runs the same kernel on other data (SweepCommand.StorageTablesAreAnAxis covers it)
     const char* backend = "sdf-octree";
     BackendOptions storage_options;
-    storage_options.tracing.storage_tables = true;
+    storage_options.params.set("storage_tables", "1");
     storage_options.validation = true;
     auto texel = create_renderer(backend, BackendOptions{});
     auto storage = create_renderer(backend, storage_options);
@@ -163,7 +164,7 @@ TEST(SdfOptions, StorageTablesDrawExactlyTheSame) {
     EXPECT_EQ(storage->validation_messages(), 0u);
   }
   BackendOptions storage;
-  storage.tracing.storage_tables = true;
+  storage.params.set("storage_tables", "1");
   try {
     create_renderer("sdf-cpu", storage);
     ADD_FAILURE() << "sdf-cpu accepted --storage-tables";

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "harness/structure_view.h"
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "scenes/scene_source.h"
 #include "tests/test_support.h"
@@ -13,11 +14,12 @@ namespace {
 
 TEST(StructureView, PaintsHitPointsInsideTheHashOnly) {
   const Scene scene = load_scene("thesis:sphere:20");
-  BackendOptions options;
-  options.mesh_grid.cells_per_extent = 8;
-  options.scene_hash.octree_depth = 2;
-  const sdf::SceneSdf sdf = sdf::build_scene_sdf(scene, options.mesh_grid, options.scene_hash);
-  auto renderer = create_renderer("embree", options);
+  sdf::MeshGridParams mesh_grid;
+  mesh_grid.cells_per_extent = 8;
+  sdf::SceneHashParams scene_hash;
+  scene_hash.octree_depth = 2;
+  const sdf::SceneSdf sdf = sdf::build_scene_sdf(scene, mesh_grid, scene_hash);
+  auto renderer = create_renderer("embree", BackendOptions{});
   renderer->prepare(scene);
   const FrameRequest request{96, 54, RenderMode::Primary, true};
   const FrameImages frame = renderer->render(request).images;

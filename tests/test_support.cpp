@@ -1,3 +1,4 @@
+#include "renderers/backend_registry.h"
 #include "tests/test_support.h"
 
 #include <gtest/gtest.h>

@@ -10,6 +10,7 @@
 #include "harness/commands.h"
 #include "harness/csv.h"
 #include "harness/image_agreement.h"
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "renderers/shading/gpu_types.h"
 #include "renderers/vulkan/ray_tracing_support.h"

@@ -2,6 +2,7 @@
 // message counter actually sees validation errors.
 #include <gtest/gtest.h>
 
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "renderers/vulkan/vulkan_context.h"
 #include "scenes/thesis_layout.h"

@@ -7,6 +7,7 @@
 
 #include "harness/image_agreement.h"
 #include "renderers/frame_params.h"
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "scenes/scene_loader.h"
 #include "tests/test_support.h"

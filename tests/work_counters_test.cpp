@@ -6,6 +6,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "renderers/sdf/traced_distance.h"
 #include "scenes/thesis_layout.h"

@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "harness/cli_common.h"
+#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "renderers/work_counters.h"
 #include "renderers/vulkan/compute_kernel.h"
