@@ -137,7 +137,7 @@ std::vector<std::string> parse_param_list(const ParamSpec& spec, const std::stri
   for (const std::string& text : split_list(list, flag_of(spec))) {
     const std::string value = parse_param_value(spec, text);
     if (std::find(values.begin(), values.end(), value) != values.end())
-      throw Error(flag_of(spec) + " '" + list + "': '" + text + "' is " + value + " again (each value once)");
+      throw Error(flag_of(spec) + " '" + list + "': '" + text + "' is listed twice" + (text == value ? "" : " (as '" + value + "')"));
     values.push_back(value);
   }
   return values;
