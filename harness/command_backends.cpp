@@ -63,10 +63,21 @@ void print_text() {
 }  // namespace
 
 void register_backends_command(CLI::App& app) {
-  auto json = std::make_shared<bool>(false);
+  struct Args {
+    bool json = false;
+    std::string names;
+  };
+  auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("backends", "List the backends, what they support and the parameters each owns");
-  cmd->add_flag("--json", *json, "as JSON (names, kinds, parameters with defaults, ranges and choices; for scripts)");
-  cmd->callback([json] { *json ? print_json() : print_text(); });
+  cmd->add_flag("--json", args->json, "as JSON (names, kinds, parameters with defaults, ranges and choices; for scripts)");
+  cmd->add_option("--names", args->names, "only the names, comma-separated: all, or table (those `table` runs by default)")
+      ->check(CLI::IsMember({"all", "table"}));
+  cmd->callback([args] {
+    if (args->names == "all") std::cout << backend_list() << "\n";
+    else if (args->names == "table") std::cout << default_table_backends() << "\n";
+    else if (args->json) print_json();
+    else print_text();
+  });
 }
 
 }  // namespace sdfbench

@@ -44,7 +44,7 @@ void run_compare(const CompareArgs& args) {
   for (const std::string& b : backends) check_backend_name(b);
   check_backend_name(args.reference);
   std::vector<std::string> run = backends;
-  run.push_back(args.reference);
+  if (std::find(run.begin(), run.end(), args.reference) == run.end()) run.push_back(args.reference);
   check_options_taken(args.backend_options, run);
   if (std::none_of(backends.begin(), backends.end(), [&](const std::string& b) { return b != args.reference; }))
     throw Error("--backends '" + args.backends + "' lists only the reference (" + args.reference +

@@ -335,6 +335,53 @@ TEST(TableCommand, BadArgumentsAreClearErrors) {
   }
 }
 
+// Issue 36: a parameter that no backend of the run takes is an error naming the flag and the
+// backends that take it, in every command, before anything is built.
+TEST(BackendRegistry, AParameterNoBackendOfTheRunTakesIsAnError) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"render --scene thesis:sphere:1 --backend embree --octree-depth 3",
+       "--octree-depth is a parameter of sdf-octree, sdf-bricks, sdf-cpu; no backend of this run (embree) takes it"},
+      {"table --backends bvh --voxels 64 --quick", "--voxels is a parameter of sdf-bricks; no backend of this run (bvh) takes it"},
+      {"sweep --scene thesis:sphere:1 --backend sdf-global --lists exact,thesis",
+       "--lists is a parameter of sdf-hash, sdf-octree, sdf-bricks, sdf-cpu; --backend sdf-global does not take it"},
+      {"compare --scene thesis:sphere:1 --backends embree,bvh --global-voxel 0.5",
+       "--global-voxel is a parameter of sdf-global; no backend of this run (embree, bvh) takes it"},
+      {"build --scene thesis:sphere:1 --backend sdf-hash --octree-depth 2",
+       "--octree-depth is a parameter of sdf-octree, sdf-bricks, sdf-cpu; no backend of this run (sdf-hash) takes it"},
+      {"render --scene thesis:sphere:1 --backend bvh --cache x.sdfcache", "--cache stores the structures of"},
+      {"render --scene thesis:sphere:1 --backend sdf-octree --hit field", "--hit field: sdf-octree takes exact or thesis"},
+  };
+  for (const auto& [args, words] : cases) {
+    const test::CommandResult r = test::run_sdfbench(args);
+    EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("sdfbench: error: " + words), std::string::npos) << args << "\n" << r.output;
+  }
+  // render says what it used, defaults included, as the CSV records it.
+  const test::CommandResult used =
+      test::run_sdfbench("render --scene thesis:sphere:1 --backend sdf-hash --size 16x9 --frames 1 --warmup 0 --max-steps 300");
+  ASSERT_EQ(used.exit_code, 0) << used.output;
+  EXPECT_NE(used.output.find("params   hash_cell=1 lists=exact mesh_cell=0 cells_per_extent=32"), std::string::npos) << used.output;
+  EXPECT_NE(used.output.find("max_steps=300"), std::string::npos) << used.output;
+}
+
+// Issue 36: every declared parameter is a sweep axis (here two that the old sweep could not vary).
+TEST(SweepCommand, VariesEveryDeclaredParameter) {
+  test::TempDir dir;
+  const std::string csv = (dir.path() / "s.csv").string();
+  const test::CommandResult r = test::run_sdfbench(
+      "sweep --scene thesis:sphere:4 --backend sdf-octree --lists exact,thesis --octree-min-size 1,2.5 --octree-depth 2 "
+      "--size 32x18 --check-size 32x18 --frames 1 --warmup 0 --csv " + csv);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const CsvTable t = read_csv(csv);
+  ASSERT_EQ(t.rows.size(), 4u);
+  std::set<std::string> seen;
+  for (const auto& row : t.rows) {
+    EXPECT_EQ(row[t.column("octree_depth")], "2");
+    seen.insert(row[t.column("lists")] + "/" + row[t.column("octree_min_size")]);
+  }
+  EXPECT_EQ(seen, (std::set<std::string>{"exact/1", "exact/2.5", "thesis/1", "thesis/2.5"}));
+}
+
 // Issue 27, class 3: the plan's size is known before it is built; 25 M configurations are refused
 // at once (in well under the minutes and gigabytes building them took), with the count and the limit.
 TEST(SweepCommand, APlanTooLargeIsRefusedBeforeItIsBuilt) {

@@ -215,6 +215,45 @@ TEST(RowConfiguration, ARowReadsBackAsTheConfigurationThatWroteIt) {
   }
 }
 
+// Issue 36: a key column is read back with the declaration of its flag, so a value the flag would
+// refuse (or that would overflow the type it is used as) is an error naming file, row and column,
+// also through `report --render-missing`.
+TEST(RowConfiguration, AValueItsFlagWouldRefuseIsAnErrorNamingFileRowAndColumn) {
+  BenchConfig config;
+  config.scene = "thesis:sphere:1";
+  config.backend = "sdf-octree";
+  config.size = {32, 18};
+  BenchSettings settings;
+  settings.check_size = {32, 18};
+  settings.reference = "embree";
+  CsvTable table;
+  table.columns = measurement_columns();
+  table.source = "bad.csv";
+  table.rows.push_back(to_csv_fields(configuration_fields(config, 0, settings)));
+  ASSERT_NO_THROW(row_configuration(table, 0));
+  const std::pair<const char*, const char*> bad[] = {{"max_steps", "0"},       {"hit_epsilon", "0.5"}, {"max_steps", "1e20"},
+                                                      {"octree_depth", "1e20"}, {"hash_cell", "-1"},   {"lists", "both"},
+                                                      {"max_depth", "1e20"},    {"threads", "4294967296"}};
+  for (const auto& [column, value] : bad) {
+    CsvTable t = table;
+    t.rows[0][t.column(column)] = value;
+    try {
+      row_configuration(t, 0);
+      ADD_FAILURE() << column << " " << value << " was read";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("'bad.csv' row 1, column " + std::string(column)), std::string::npos) << e.what();
+    }
+  }
+  test::TempDir dir;
+  CsvTable t = table;
+  t.rows[0][t.column("hit_epsilon")] = "0.5";
+  write_csv(dir.path() / "bad.csv", t);
+  const test::CommandResult r =
+      test::run_sdfbench("report " + (dir.path() / "bad.csv").string() + " --render-missing --out " + (dir.path() / "r.html").string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("row 1, column hit_epsilon: expected a number in [1e-08, 0.01], got '0.5'"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace sdfbench
 

@@ -72,7 +72,10 @@ mkdir -p "$dir"
 echo "gpu_run: device '$name' -> $dir" >&2
 
 agreement="$dir/agreement.txt" disagreed=0
-backends=tri-aabb,bvh,sdf-hash,sdf-octree,sdf-bricks,sdf-global
+# Every backend `table` runs by default (the registry's list), Embree (the reference) first and
+# vk-rt only where the device runs it.
+backends=$("$binary" backends --names table | tr ',' '\n' | grep -vx -e embree -e vk-rt | paste -sd, -)
+[[ -n $backends ]] || die "could not read the backends from '$binary backends --names table'"
 if "$binary" render --scene thesis:sphere:1 --backend vk-rt --size 16x9 --frames 1 --warmup 0 --device "$device" >/dev/null 2>&1; then
   backends=$backends,vk-rt
 else

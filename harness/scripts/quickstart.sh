@@ -13,7 +13,7 @@ $sdfbench info
 $sdfbench table --quick --csv out/quick.csv --markdown out/quick.md --keep-images out/images
 harness/scripts/plot_results.py out/quick.csv --out-dir out/plots
 $sdfbench report out/quick.csv --plots out/plots --out out/report.html
-for backend in embree tri-aabb bvh vk-rt sdf-hash sdf-octree sdf-bricks sdf-global; do
+for backend in $($sdfbench backends --names table | tr ',' ' '); do  # the registry's list (`sdfbench backends`)
   $sdfbench render --scene thesis:bunny:100 --backend "$backend" --mode shadow --size 320x180 --frames 1 \
     --out "out/bunny100_$backend.png"
 done
