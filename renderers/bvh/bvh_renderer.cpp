@@ -114,13 +114,13 @@ void BvhRenderer::prepare(const Scene& scene) {
 }
 
 BackendInfo bvh_backend() {
-  BackendInfo info;
-  info.name = "bvh";
-  info.kind = "compute-bvh";
-  info.summary = "a two-level SAH BVH (Embree's builder) traversed in a Vulkan compute kernel";
-  info.counters = true;
-  info.create = [](const BackendOptions& options) { return std::make_unique<BvhRenderer>(options); };
-  return info;
+  return {
+      .name = "bvh",
+      .kind = "compute-bvh",
+      .summary = "a two-level SAH BVH (Embree's builder) traversed in a Vulkan compute kernel",
+      .counters = true,
+      .create = [](const BackendOptions& options) { return std::make_unique<BvhRenderer>(options); },
+  };
 }
 
 }  // namespace sdfbench

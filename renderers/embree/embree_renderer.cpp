@@ -119,13 +119,13 @@ FrameResult EmbreeRenderer::render(const FrameRequest& request) {
 }
 
 BackendInfo embree_backend() {
-  BackendInfo info;
-  info.name = "embree";
-  info.kind = "cpu-bvh";
-  info.summary = "Embree on the CPU: the reference every image is checked against";
-  info.vulkan = false;
-  info.create = [](const BackendOptions& options) { return std::make_unique<EmbreeRenderer>(options); };
-  return info;
+  return {
+      .name = "embree",
+      .kind = "cpu-bvh",
+      .summary = "Embree on the CPU: the reference every image is checked against",
+      .vulkan = false,
+      .create = [](const BackendOptions& options) { return std::make_unique<EmbreeRenderer>(options); },
+  };
 }
 
 }  // namespace sdfbench

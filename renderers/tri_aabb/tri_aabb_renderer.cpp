@@ -14,13 +14,13 @@ void TriAabbRenderer::prepare(const Scene& scene) {
 }
 
 BackendInfo tri_aabb_backend() {
-  BackendInfo info;
-  info.name = "tri-aabb";
-  info.kind = "triangles";
-  info.summary = "the thesis' \"traditional\" tracer: a box per instance, every triangle tested (compute kernel)";
-  info.counters = true;
-  info.create = [](const BackendOptions& options) { return std::make_unique<TriAabbRenderer>(options); };
-  return info;
+  return {
+      .name = "tri-aabb",
+      .kind = "triangles",
+      .summary = "the thesis' \"traditional\" tracer: a box per instance, every triangle tested (compute kernel)",
+      .counters = true,
+      .create = [](const BackendOptions& options) { return std::make_unique<TriAabbRenderer>(options); },
+  };
 }
 
 }  // namespace sdfbench

@@ -42,12 +42,12 @@ void VkRtRenderer::prepare(const Scene& scene) {
 }
 
 BackendInfo vk_rt_backend() {
-  BackendInfo info;
-  info.name = "vk-rt";
-  info.kind = "driver-rt";
-  info.summary = "the driver's own ray tracing (VK_KHR_ray_tracing_pipeline)";
-  info.create = [](const BackendOptions& options) { return std::make_unique<VkRtRenderer>(options); };
-  return info;
+  return {
+      .name = "vk-rt",
+      .kind = "driver-rt",
+      .summary = "the driver's own ray tracing (VK_KHR_ray_tracing_pipeline)",
+      .create = [](const BackendOptions& options) { return std::make_unique<VkRtRenderer>(options); },
+  };
 }
 
 }  // namespace sdfbench
