@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "harness/row_verdict.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/fnv1a.h"
@@ -134,7 +135,7 @@ CsvTable run_plan(const std::vector<BenchConfig>& plan, BenchmarkRunner& runner,
       // again: its row is dropped here and written anew.
       size_t failed = 0;
       for (size_t r = table.rows.size(); r-- > 0;)
-        if (table.rows[r][table.column("agreement")].rfind("ERROR", 0) == 0) {
+        if (row_verdict(table, table.rows[r]).is_error()) {
           done.erase(configuration_key(table.rows[r], table.columns));
           table.rows.erase(table.rows.begin() + static_cast<std::ptrdiff_t>(r));
           ++failed;

@@ -9,6 +9,7 @@
 #include "harness/output_paths.h"
 #include "harness/image_store.h"
 #include "harness/row_rerender.h"
+#include "harness/row_verdict.h"
 #include "harness/run_options.h"
 #include "harness/system_info.h"
 #include "util/atomic_file.h"
@@ -75,7 +76,7 @@ void run_report(const ReportArgs& args) {
       RowImages images;
       const std::string where = "'" + t.source + "' row " + std::to_string(row + 1);
       auto field = [&](const char* column) { return t.has_column(column) ? t.rows[row][t.column(column)] : std::string(); };
-      const bool failed = field("agreement").rfind("ERROR", 0) == 0;
+      const bool failed = row_verdict(t, t.rows[row]).is_error();
       if (!field("frame_image").empty()) {
         images.frame = store.add_file(base / field("frame_image"), where + ": frame_image");
         images.reference = store.add_file(base / field("reference_image"), where + ": reference_image");

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "harness/measurement.h"
+#include "harness/row_verdict.h"
 
 namespace sdfbench {
 namespace {
@@ -55,31 +56,22 @@ struct Row {
     return table->has_column(column) ? table->rows[index][table->column(column)] : none;
   }
   double number(const std::string& column) const { return std::atof((*this)[column].c_str()); }
-  bool starts(const std::string& prefix) const { return (*this)["agreement"].rfind(prefix, 0) == 0; }
 };
 
-// The row's flags as the markdown writes them, and whether any makes its figures invalid.
-struct Flags {
-  std::string marks, why;
-  bool bad = false, warn = false;
-};
-
-Flags flags_of(const Row& r, const RowImages& images) {
-  Flags f;
-  auto add = [&](const std::string& mark, const std::string& why, bool bad) {
-    f.marks += (f.marks.empty() ? "" : " ") + mark;
-    f.why += (f.why.empty() ? "" : "; ") + why;
-    (bad ? f.bad : f.warn) = true;
-  };
-  if (r.starts("ERROR")) add("ERROR", "the configuration failed", true);
-  if (r.starts("DISAGREE")) add("✗", "images disagree with the reference", true);
-  if (r.starts("TRUNCATED")) add("✂", "cut short by a loop limit: image and FPS invalid", true);
-  if (r["agreement"].find("validation messages") != std::string::npos) add("V", "Vulkan validation messages", true);
-  if (r["budget_cut"] == "1") add("†", "the time budget cut the run (fewer frames than asked)", false);
-  if (r["busy"] == "1") add("‡", "timed on a busy machine", false);
-  if (images.mismatch) add("≠", "re-rendered images are not the row's (agreement figures differ)", true);
-  return f;
+// The row's verdict (harness/row_verdict.h), ≠ when its re-rendered images are not the row's.
+RowVerdict verdict_of(const Row& r, const RowImages& images) {
+  return row_verdict(*r.table, r.table->rows[r.index], images.mismatch);
 }
+
+// The FPS and the row's marks; an ERROR row has no FPS, its mark stands in for it.
+std::string fps_cell(const Row& r, const RowVerdict& verdict) {
+  if (verdict.is_error()) return verdict.symbols();
+  const std::string fps = fps_text(r.number("fps"));
+  return verdict.marks.empty() ? fps : fps + " " + verdict.symbols();
+}
+
+// A flagged row's colour: red when it failed what it promised, yellow for a caution.
+const char* row_class(const RowVerdict& v) { return v.is_failure() ? "bad" : v.is_caution() ? "warn" : ""; }
 
 std::string distinct(const CsvTable& t, const std::string& column) {
   if (!t.has_column(column)) return "(not recorded)";
@@ -183,11 +175,11 @@ void thesis_tables(std::ostringstream& out, const std::vector<ReportFile>& files
             if (Row{&t, i}["mesh"] == mesh && static_cast<size_t>(Row{&t, i}.number("objects")) == c) found = &i;
           if (!found) { out << "<td>–</td>"; continue; }
           const Row r{&t, *found};
-          const Flags flags = flags_of(r, files[f].images[*found]);
+          const RowVerdict verdict = verdict_of(r, files[f].images[*found]);
           const std::optional<ThesisValue> v = thesis.find(config.id, mesh, c);
           const double fps = r.number("fps");
-          out << "<td class=\"" << (flags.bad ? "bad" : flags.warn ? "warn" : "") << "\"><a href=\"#" << anchor(f, *found)
-              << "\"><b>" << (r.starts("ERROR") ? "ERROR" : fps_text(fps)) << "</b></a>" << (flags.marks.empty() ? "" : " " + flags.marks);
+          out << "<td class=\"" << row_class(verdict) << "\"><a href=\"#" << anchor(f, *found) << "\"><b>"
+              << fps_cell(r, verdict) << "</b></a>";
           if (v) {
             out << "<br><span class=\"thesis\">thesis " << (v->upper_bound ? "&lt;1" : fps_text(v->fps)) << "</span><br>"
                 << (v->upper_bound ? "&gt;" : "") << fixed(fps / v->fps, fps / v->fps >= 10 ? 0 : 2) << "x the thesis'";
@@ -235,8 +227,8 @@ void rows_table(std::ostringstream& out, const ReportFile& file, size_t f) {
   for (size_t i = 0; i < t.rows.size(); ++i) {
     const Row r{&t, i};
     const RowImages& images = file.images[i];
-    const Flags flags = flags_of(r, images);
-    out << "<tr id=\"" << anchor(f, i) << "\" class=\"" << (flags.bad ? "bad" : flags.warn ? "warn" : "") << "\"><td>"
+    const RowVerdict verdict = verdict_of(r, images);
+    out << "<tr id=\"" << anchor(f, i) << "\" class=\"" << row_class(verdict) << "\"><td>"
         << escape(r["run_index"]) << "</td><td><b>" << escape(r["backend"]) << "</b> " << escape(r["mode"]) << "<br>"
         << escape(r["scene"]) << ", " << escape(r["width"]) << "x" << escape(r["height"])
         << (r["table"].empty() ? "" : ", table " + escape(r["table"]));
@@ -244,12 +236,13 @@ void rows_table(std::ostringstream& out, const ReportFile& file, size_t f) {
       if (!r[name].empty()) out << "<br><span class=\"param\">" << escape(name) << "=" << escape(r[name]) << "</span>";
     if (!r["backend_resolved"].empty()) out << "<br><span class=\"param\">" << escape(r["backend_resolved"]) << "</span>";
     const std::string voxels = r["depth_p99_voxels"].empty() ? "" : "<br>" + cell(r, "depth_p99_voxels", 3) + " voxels";
-    out << "</td><td>" << (r.starts("ERROR") ? "ERROR" : fps_text(r.number("fps"))) << (flags.marks.empty() ? "" : " " + flags.marks)
-        << "</td><td>" << cell(r, "mrays_per_s", 3) << "</td><td>" << cell(r, "build_ms", 0) << "</td><td>"
+    out << "</td><td>" << fps_cell(r, verdict) << "</td><td>" << cell(r, "mrays_per_s", 3) << "</td><td>"
+        << cell(r, "build_ms", 0) << "</td><td>"
         << (r["structure_bytes"].empty() ? "–" : fixed(r.number("structure_bytes") / 1e6, 1)) << "</td><td>"
         << cell(r, "hit_agreement", 2) << "</td><td>" << cell(r, "id_agreement", 2) << "</td><td>"
         << (r["depth_p99"].empty() ? "–" : escape(r["depth_p99"])) << voxels << "</td><td>" << cell(r, "psnr", 1) << "</td><td>"
-        << escape(r["agreement"]) << (flags.why.empty() ? "" : "<br><span class=\"why\">" + escape(flags.why) + "</span>")
+        << escape(r["agreement"])
+        << (verdict.marks.empty() ? "" : "<br><span class=\"why\">" + escape(verdict.reasons()) + "</span>")
         << "</td><td>" << (r["load_avg"].empty() ? "–" : cell(r, "load_avg", 2) + "<br>steal " + cell(r, "cpu_steal_pct", 1) +
                                                              " %<br>other " + cell(r, "cpu_other_pct", 1) + " %")
         << "</td><td class=\"images\">";
@@ -285,23 +278,24 @@ std::string html_report(const std::vector<ReportFile>& files, const std::vector<
   for (size_t f = 0; f < files.size(); ++f) out << (f ? ", " : "") << "<a href=\"#file" << f << "\">" << escape(files[f].table.source) << "</a>";
   out << ". Every row's images were checked against the reference backend at the check size before its figures were "
          "reported; the thumbnails are those check images (click for full size). The difference map is each pixel's "
-         "largest channel error, dark violet 0 to yellow 0.1 and above (the check counts a pixel failed from 0.05).</p>\n"
-         "<p>Flags: ✗ images disagree with the reference, ✂ cut short by a loop limit (image and FPS invalid), V Vulkan "
-         "validation messages, ERROR the configuration failed, ≠ re-rendered images whose figures are not the row's "
-         "(<span class=\"bad\">red rows</span>); † the time budget cut the run, ‡ timed on a busy machine (load average "
-         "above 1.5x the cores, CPU steal above 5 % or other processes above 10 %) (<span class=\"warn\">yellow rows</span>).</p>\n";
+         "largest channel error, dark violet 0 to yellow 0.1 and above (the check counts a pixel failed from 0.05).</p>\n";
+  std::vector<VerdictMark> failures, cautions;
+  for (const VerdictMark& m : all_verdict_marks()) (m.failure ? failures : cautions).push_back(m);
+  out << "<p>Flags: " << escape(verdict_legend(failures)) << " (<span class=\"bad\">red rows</span>: the row failed what it "
+      << "promised); " << escape(verdict_legend(cautions)) << " (<span class=\"warn\">yellow rows</span>).</p>\n";
   // Flagged rows first: what a reader must not miss.
   std::ostringstream flagged;
   size_t flagged_count = 0;
   for (size_t f = 0; f < files.size(); ++f)
     for (size_t i = 0; i < files[f].table.rows.size(); ++i) {
       const Row r{&files[f].table, i};
-      const Flags flags = flags_of(r, files[f].images[i]);
-      if (flags.marks.empty()) continue;
+      const RowVerdict verdict = verdict_of(r, files[f].images[i]);
+      if (verdict.marks.empty()) continue;
       ++flagged_count;
-      flagged << "<li class=\"" << (flags.bad ? "bad" : "warn") << "\"><a href=\"#" << anchor(f, i) << "\">"
+      flagged << "<li class=\"" << row_class(verdict) << "\"><a href=\"#" << anchor(f, i) << "\">"
               << escape(files[f].table.source) << " #" << escape(r["run_index"]) << "</a> " << escape(r["backend"]) << " "
-              << escape(r["mode"]) << " " << escape(r["scene"]) << ": " << flags.marks << " " << escape(flags.why) << "</li>\n";
+              << escape(r["mode"]) << " " << escape(r["scene"]) << ": " << verdict.symbols() << " " << escape(verdict.reasons())
+              << "</li>\n";
     }
   out << "<h2>Flagged rows</h2>\n";
   if (flagged_count) out << "<ul>\n" << flagged.str() << "</ul>\n";

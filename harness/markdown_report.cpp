@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "harness/row_verdict.h"
 #include "renderers/backend_registry.h"
 
 namespace sdfbench {
@@ -19,6 +20,7 @@ struct Row {
   const std::vector<std::string>* fields;
   const std::string& operator[](const std::string& column) const { return fields->at(table->column(column)); }
   double number(const std::string& column) const { return std::atof((*this)[column].c_str()); }
+  RowVerdict verdict() const { return row_verdict(*table, *fields); }
 };
 
 std::vector<Row> rows_of(const CsvTable& csv) {
@@ -33,18 +35,16 @@ std::string fixed(double v, int digits) {
   return text;
 }
 
-bool truncated(const Row& r) { return r["agreement"].rfind("TRUNCATED", 0) == 0; }
+bool truncated(const Row& r) { return r.verdict().has(Mark::truncated); }
 
-// FPS with ~3 significant digits, and the row's flags.
+// FPS with ~3 significant digits, and the row's marks (harness/row_verdict.h); an ERROR row has
+// no FPS, its mark stands in for it.
 std::string fps_cell(const Row& r) {
-  if (r["agreement"].rfind("ERROR", 0) == 0) return "ERROR";
+  const RowVerdict verdict = r.verdict();
+  if (verdict.is_error()) return verdict.symbols();
   const double fps = r.number("fps");
-  std::string text = fixed(fps, fps >= 100 ? 0 : fps >= 10 ? 1 : fps >= 1 ? 2 : 3);
-  if (r["budget_cut"] == "1") text += " †";
-  if (r["agreement"].rfind("DISAGREE", 0) == 0) text += " ✗";
-  if (truncated(r)) text += " ✂";
-  if (r.table->has_column("busy") && r["busy"] == "1") text += " ‡";
-  return text;
+  const std::string text = fixed(fps, fps >= 100 ? 0 : fps >= 10 ? 1 : fps >= 1 ? 2 : 3);
+  return verdict.marks.empty() ? text : text + " " + verdict.symbols();
 }
 
 std::string thesis_cell(const ThesisValue& v) { return v.upper_bound ? "<1" : fixed(v.fps, v.fps >= 10 ? 0 : 1); }
@@ -138,7 +138,7 @@ void pair_table(std::ostringstream& out, const std::string& mode, const std::vec
                 const std::string& b, const std::string& what) {
   std::vector<Row> as, bs;
   for (const Row& r : rows) {
-    if (r["agreement"].rfind("ERROR", 0) == 0) continue;
+    if (r.verdict().is_error()) continue;
     if (r["backend"] == a) as.push_back(r);
     if (r["backend"] == b) bs.push_back(r);
   }
@@ -247,9 +247,12 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
   }
   for (const std::vector<Row>& sweep : sweeps) sweep_table(out, sweep);
   if (rows.empty()) out << "(no measurements)\n";
-  out << "Flags: ✗ images disagree with the reference (see the CSV's agreement column), † the time budget cut the run "
-         "(fewer frames than asked; a single cold frame when only the warm-up fitted), ‡ timed on a busy machine (load average above 1.5x the cores, CPU steal above 5 % or other processes above 10 %: the CSV's load columns), ✂ lavapipe's loop limit cut pixels "
-         "short, or a traversal reached its hard bound (image and FPS invalid; docs/limits.md, \"The loop limit\"), ERROR the configuration failed.\n";
+  // Every mark a row can get here (≠ is the HTML report's: it re-renders rows).
+  std::vector<VerdictMark> failures, cautions;
+  for (const VerdictMark& m : all_verdict_marks())
+    if (m.kind != Mark::not_reproduced) (m.failure ? failures : cautions).push_back(m);
+  out << "Flags, the row failed what it promised: " << verdict_legend(failures) << ". Cautions: " << verdict_legend(cautions)
+      << ".\n";
   return out.str();
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // Markdown views of a measurement CSV: the thesis' tables laid out like the thesis (rows
 // meshes, columns object counts) with the thesis' value beside ours, the 6.1/6.3 speed-up,
-// every backend side by side per mode, and sweeps. Flagged cells: "✗" images disagree with the
-// reference, "†" the time budget cut the run short, "ERROR" the configuration failed.
+// every backend side by side per mode, and sweeps. Flagged cells carry the row's marks
+// (harness/row_verdict.h: ERROR, ✗, ✂, V, † and ‡), explained below the tables.
 #include <string>
 
 #include "harness/csv.h"

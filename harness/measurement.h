@@ -46,7 +46,8 @@ struct Measurement {
   std::optional<double> hit_agreement, id_agreement, psnr;
   // relative depth error (p99) where both hit the same instance; a sampled field's also in its voxels
   std::optional<double> depth_p99, depth_p99_voxels;
-  std::string agreement;  // "ok", "reference", "DISAGREE: <what>", "TRUNCATED: <n> pixels" or "ERROR: <message>"
+  std::string agreement;  // "ok", "reference", "DISAGREE: <what>", "TRUNCATED: <n> pixels" or "ERROR: <message>",
+                          // all but ERROR possibly followed by " (N validation messages)" (harness/row_verdict.h reads it)
   bool budget_cut = false;
   // how busy the machine was over the timed frames (util/machine_load.h); empty where /proc is unreadable
   std::optional<double> load_avg, cpu_steal_pct, cpu_other_pct;

@@ -5,6 +5,7 @@
 #include "harness/cli_common.h"
 #include "harness/commands.h"
 #include "harness/markdown_report.h"
+#include "harness/row_verdict.h"
 #include "harness/thesis_tables.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -53,6 +54,18 @@ void prepare_image_folder(const std::filesystem::path& dir, const char* what) {
   check_output_path(dir / "sdfbench-check.png", what);  // writable: fails now, not after the first row
 }
 
+int RowTally::exit_status() const { return errors ? kExitRowsFailed : failures ? kExitRowsDisagree : 0; }
+
+RowTally tally_rows(const CsvTable& rows) {
+  RowTally tally;
+  for (const auto& row : rows.rows) {
+    const RowVerdict verdict = row_verdict(rows, row);
+    if (verdict.is_error()) ++tally.errors;
+    else if (verdict.is_failure()) ++tally.failures;
+  }
+  return tally;
+}
+
 void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& options, const std::vector<NamedPath>& inputs) {
   const PlanOptions plan_options = options.plan();
   if (!options.markdown.empty()) check_output_path(options.markdown, "--markdown");
@@ -73,23 +86,15 @@ void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& opti
   write_markdown(options.markdown, rows);
   std::cout << "\n" << markdown_report(rows, ThesisTables::load_default());
   // The exit status says what the rows say (docs/commands.md, "Tables, sweeps and their CSV").
-  size_t failed = 0, disagreed = 0;
-  const size_t agreement = rows.column("agreement");
-  for (const auto& row : rows.rows) {
-    failed += row[agreement].rfind("ERROR", 0) == 0;
-    disagreed += row[agreement].rfind("DISAGREE", 0) == 0 || row[agreement].rfind("TRUNCATED", 0) == 0 ||
-                 row[agreement].find("validation messages") != std::string::npos;
-  }
-  if (failed) {
-    std::cerr << "sdfbench: " << failed << " of " << rows.rows.size() << " configurations failed (ERROR rows"
+  const RowTally tally = tally_rows(rows);
+  if (tally.errors)
+    std::cerr << "sdfbench: " << tally.errors << " of " << rows.rows.size() << " configurations failed (ERROR rows"
               << (options.csv.empty() ? "" : " in '" + options.csv + "'; --resume runs them again") << ")\n";
-    throw CommandFailed{kExitRowsFailed};
-  }
-  if (disagreed) {
-    std::cerr << "sdfbench: " << disagreed << " of " << rows.rows.size()
-              << " configurations disagree with the reference or were cut short (DISAGREE / TRUNCATED rows)\n";
-    throw CommandFailed{kExitRowsDisagree};
-  }
+  else if (tally.failures)
+    std::cerr << "sdfbench: " << tally.failures << " of " << rows.rows.size()
+              << " configurations disagree with the reference, were cut short or drew Vulkan validation messages "
+                 "(DISAGREE, TRUNCATED or validation messages in the agreement column)\n";
+  if (const int status = tally.exit_status()) throw CommandFailed{status};
 }
 
 }  // namespace sdfbench
