@@ -18,7 +18,7 @@ namespace {
 
 constexpr RenderMode kModes[] = {RenderMode::Primary, RenderMode::Shadow};
 
-class SdfVkVsEmbree : public testing::TestWithParam<const char*> {};
+class SdfVkVsEmbree : public testing::TestWithParam<std::string> {};
 
 TEST_P(SdfVkVsEmbree, ImagesAgreeUnderValidation) {
   const Scene scene = make_thesis_scene({"bunny", 300, 1});
