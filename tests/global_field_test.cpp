@@ -59,7 +59,7 @@ class GlobalFieldVsBruteForce : public testing::TestWithParam<GlobalCase> {
     sdf::GlobalFieldParams params;
     params.voxel = c.voxel;
     params.format = c.format;
-    sdf_ = sdf::build_scene_sdf(scene_, sdf::MeshGridParams{}, hash, nullptr, &params);
+    sdf_ = sdf::build_scene_sdf(scene_, sdf::MeshGridParams{}, hash, {params});
   }
   Scene scene_;
   sdf::SceneSdf sdf_;

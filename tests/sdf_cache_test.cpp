@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "renderers/sdf/cache/section_codec.h"
 #include "renderers/sdf/sdf_cache.h"
 #include "renderers/sdf/sdf_cache_format.h"
 #include "scenes/random.h"
@@ -63,6 +64,38 @@ T peek(const Bytes& bytes, size_t offset) {
   T value;
   std::memcpy(&value, bytes.data() + offset, sizeof value);
   return value;
+}
+
+// The v3 section table: after the 48-byte header, 40-byte entries
+// {kind, codec version, index, owner, element size, pad, offset, count}.
+constexpr size_t kTable = 48, kEntry = 40;
+constexpr size_t kKind = 0, kVersion = 4, kIndex = 8, kOwner = 12, kElementBytes = 16, kOffset = 24, kCount = 32;
+
+// The table position of every section of `contents` named `prefix`..., in table order.
+std::vector<size_t> entries_named(const sdf::SdfCacheContents& contents, const std::string& prefix) {
+  std::vector<size_t> out;
+  for (size_t i = 0; i < contents.sections.size(); ++i)
+    if (contents.sections[i].name.rfind(prefix, 0) == 0) out.push_back(kTable + i * kEntry);
+  return out;
+}
+
+// The table position of every section of codec `kind` in a cache file.
+std::vector<size_t> entries_of_kind(const Bytes& bytes, uint32_t kind) {
+  std::vector<size_t> out;
+  const uint32_t sections = peek<uint32_t>(bytes, 40);
+  for (size_t i = 0; i < sections; ++i)
+    if (peek<uint32_t>(bytes, kTable + i * kEntry + kKind) == kind) out.push_back(kTable + i * kEntry);
+  return out;
+}
+
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
 }
 
 class SdfCacheTest : public ::testing::Test {
@@ -158,7 +191,7 @@ TEST_F(SdfCacheTest, TruncatedFilesAreRefused) {
   const Bytes valid = read_all(write_valid());
   for (const size_t size : {size_t{0}, size_t{7}, size_t{60}, valid.size() / 2, valid.size() - 1})
     expect_refused_everywhere(Bytes(valid.begin(), valid.begin() + static_cast<std::ptrdiff_t>(size)),
-                              size < 104 ? "too short" : "truncated");
+                              size < 56 ? "too short" : "truncated");
 }
 
 TEST_F(SdfCacheTest, BitFlipsAreRefused) {
@@ -186,16 +219,27 @@ TEST_F(SdfCacheTest, ResealedHostileFilesAreRefused) {
       if (s.name == name) return s;
     throw std::logic_error("no section " + name);
   };
-  constexpr size_t kTable = 96;  // section table: 32-byte entries {kind, owner, element size, pad, offset, count}
   struct Case {
     std::string name, expected;
     std::function<void(Bytes&)> mutate;
   };
   const std::vector<Case> cases = {
-      {"section offset past the end", "outside the payload", [&](Bytes& b) { poke<uint64_t>(b, kTable + 16, b.size() * 2); }},
-      {"section count past the end", "run past the end", [&](Bytes& b) { poke<uint64_t>(b, kTable + 24, uint64_t{1} << 60); }},
-      {"section kind unknown", "unknown kind", [&](Bytes& b) { poke<uint32_t>(b, kTable, 99u); }},
-      {"overlapping sections", "overlaps", [&](Bytes& b) { poke<uint64_t>(b, kTable + 32 + 16, peek<uint64_t>(b, kTable + 16)); }},
+      {"section offset past the end", "outside the payload", [&](Bytes& b) { poke<uint64_t>(b, kTable + kOffset, b.size() * 2); }},
+      {"section count past the end", "run past the end", [&](Bytes& b) { poke<uint64_t>(b, kTable + kCount, uint64_t{1} << 60); }},
+      {"a required section of an unknown kind", "mesh grids: mesh grid params is missing",
+       [&](Bytes& b) { poke<uint32_t>(b, kTable + kKind, 99u); }},
+      {"a section index the codec does not have", "has unknown index", [&](Bytes& b) { poke<uint32_t>(b, kTable + kIndex, 99u); }},
+      {"a per-file section with an owner", "has owner", [&](Bytes& b) { poke<uint32_t>(b, kTable + kOwner, 3u); }},
+      {"an element size the codec does not use", "element size", [&](Bytes& b) { poke<uint32_t>(b, kTable + kElementBytes, 5u); }},
+      {"a section twice (cell_triangles as a second cell_begin)", "mesh grids: mesh 0 cell_begin appears twice",
+       [&](Bytes& b) { poke<uint32_t>(b, kTable + 3 * kEntry + kIndex, 2u); }},
+      {"one structure in two codec versions", "in version 7 and 1", [&](Bytes& b) { poke<uint32_t>(b, kTable + kEntry + kVersion, 7u); }},
+      {"the mesh grids in another codec version", "holds mesh grids in codec version 7; this sdfbench reads version 1",
+       [&](Bytes& b) {
+         for (const size_t e : entries_named(c, "mesh ")) poke<uint32_t>(b, e + kVersion, 7u);
+       }},
+      {"overlapping sections", "overlaps",
+       [&](Bytes& b) { poke<uint64_t>(b, kTable + kEntry + kOffset, peek<uint64_t>(b, kTable + kOffset)); }},
       {"triangle index out of range", "triangle index",
        [&](Bytes& b) { poke<uint32_t>(b, section("mesh 0 cell_triangles").offset, 1000000u); }},
       {"child index out of range", "child index",
@@ -211,11 +255,13 @@ TEST_F(SdfCacheTest, ResealedHostileFilesAreRefused) {
       {"non-finite cell size", "grid", [&](Bytes& b) { poke<float>(b, section("mesh 0 grid header").offset + 12, NAN); }},
       {"cell_begin not monotone", "prefix sum",
        [&](Bytes& b) { poke<uint32_t>(b, section("mesh 0 cell_begin").offset + 8, 0xffffffffu); }},
-      {"bad list rule", "list rule", [&](Bytes& b) { poke<uint32_t>(b, 84, 7u); }},
+      {"bad list rule", "list rule", [&](Bytes& b) { poke<uint32_t>(b, section("hash params").offset + 16, 7u); }},
+      {"bad mesh grid rule", "mesh grid rule", [&](Bytes& b) { poke<uint32_t>(b, section("mesh grid params").offset + 12, 9u); }},
       {"wrong version", "format version", [&](Bytes& b) { poke<uint32_t>(b, 8, 99u); }},
-      {"a version 1 cache (before the global field)", "format version 1; this sdfbench reads version 2",
-       [&](Bytes& b) { poke<uint32_t>(b, 8, 1u); }},
-      {"a voxel request without a global field", "global field parameters", [&](Bytes& b) { poke<float>(b, 92, 0.5f); }},
+      {"a version 2 cache (parameters in the header)",
+       "format version 2; this sdfbench reads version 3 (written by an older sdfbench; rebuild it with `sdfbench build --cache`, "
+       "or delete it)",
+       [&](Bytes& b) { poke<uint32_t>(b, 8, 2u); }},
   };
   for (const Case& k : cases) {
     SCOPED_TRACE(k.name);
@@ -231,11 +277,11 @@ TEST_F(SdfCacheTest, ResealedHostileFilesAreRefused) {
 // and hostile brick sections refused.
 TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
   const sdf::BrickFieldParams bricks{16, 3, sdf::SdfFormat::f16};
-  sdf::SceneSdf with = sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), &bricks);
+  sdf::SceneSdf with = sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), {bricks});
   ASSERT_EQ(with.brick_fields.size(), scene_->meshes.size());
   const fs::path path = dir_.path() / "bricks.sdfcache";
   sdf::write_sdf_cache(path, *scene_, with, small_grid());
-  const sdf::SceneSdf loaded = sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), &bricks);
+  const sdf::SceneSdf loaded = sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {bricks});
   ASSERT_EQ(loaded.brick_fields.size(), 1u);
   const sdf::BrickField &a = with.brick_fields[0], &b = loaded.brick_fields[0];
   EXPECT_EQ(a.origin, b.origin);
@@ -252,13 +298,13 @@ TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
   EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash()));  // the exact backends ignore them
   const sdf::BrickFieldParams other{16, 3, sdf::SdfFormat::u8};
   try {
-    sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), &other);
+    sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {other});
     ADD_FAILURE() << "a cache with other brick parameters was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("--sdf-format f16, requested"), std::string::npos) << e.what();
   }
   try {
-    sdf::load_sdf_cache(write_valid(), *scene_, small_grid(), small_hash(), &bricks);
+    sdf::load_sdf_cache(write_valid(), *scene_, small_grid(), small_hash(), {bricks});
     ADD_FAILURE() << "a cache without brick fields was accepted for sdf-bricks";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("holds no brick fields"), std::string::npos) << e.what();
@@ -268,12 +314,12 @@ TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
   std::ostringstream log;
   const fs::path plain = write_valid();
   const sdf::SceneSdf completed =
-      sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, &bricks);
+      sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, {bricks});
   EXPECT_EQ(completed.brick_fields.size(), 1u);
   EXPECT_NE(log.str().find("added brick fields"), std::string::npos) << log.str();
-  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), &bricks));
+  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), {bricks}));
   EXPECT_THROW(
-      sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, &other),
+      sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, {other}),
       Error);
   const Bytes valid = read_all(path);
   const sdf::SdfCacheContents c = sdf::decode_sdf_cache(valid, "valid");
@@ -298,7 +344,8 @@ TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
       {"non-finite coarse value", "coarse", [&](Bytes& b) { poke<float>(b, section("mesh 0 brick coarse level").offset, NAN); }},
       {"more stored bricks than bricks", "stored bricks",
        [&](Bytes& b) { poke<uint32_t>(b, section("mesh 0 brick header").offset + 28, 0xffffffffu); }},
-      {"bad brick parameters", "brick field parameters", [&](Bytes& b) { poke<uint32_t>(b, 44, 2u); }},
+      {"bad brick parameters", "brick field parameters", [&](Bytes& b) { poke<uint32_t>(b, section("brick params").offset, 2u); }},
+      {"a bad format", "brick field parameters", [&](Bytes& b) { poke<uint32_t>(b, section("brick params").offset + 8, 3u); }},
   };
   for (const auto& k : cases) {
     SCOPED_TRACE(k.name);
@@ -312,6 +359,87 @@ TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
       EXPECT_NE(std::string(e.what()).find(k.expected), std::string::npos) << e.what();
     }
   }
+}
+
+// Each structure's sections carry their codec's version: a copy in another version is stale for
+// that structure alone (the exact backends still load the cache; sdf-bricks refuses it, or
+// rebuilds it when asked), and a structure of a kind this sdfbench does not know is skipped (the
+// cache lacks it and is completed).
+TEST_F(SdfCacheTest, AStructureInAnotherCodecVersionIsStaleForItAlone) {
+  const sdf::BrickFieldParams bricks{16, 3, sdf::SdfFormat::f16};
+  const sdf::SectionCodec& codec = sdf::brick_field_codec();
+  const fs::path path = dir_.path() / "bricks.sdfcache";
+  sdf::write_sdf_cache(path, *scene_, sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), {bricks}), small_grid());
+  const Bytes valid = read_all(path);
+  ASSERT_FALSE(entries_of_kind(valid, codec.kind).empty());
+
+  Bytes newer = valid;
+  for (const size_t e : entries_of_kind(valid, codec.kind)) poke<uint32_t>(newer, e + kVersion, codec.version + 1);
+  sdf::reseal_sdf_cache(newer);
+  write_all(path, newer);
+  const sdf::SdfCacheContents c = sdf::decode_sdf_cache(newer, "newer");
+  EXPECT_FALSE(c.sdf.brick_params.has_value());
+  ASSERT_EQ(c.structures.size(), 3u);
+  EXPECT_EQ(c.structures[2].name, "brick fields");
+  EXPECT_FALSE(c.structures[2].read);
+  EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash()));
+  const std::string stale = error_of([&] { sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {bricks}); });
+  EXPECT_NE(stale.find("is stale: it holds brick fields in codec version " + std::to_string(codec.version + 1) +
+                       ", this sdfbench reads version " + std::to_string(codec.version)),
+            std::string::npos)
+      << stale;
+  std::ostringstream log;
+  const std::string refused = error_of([&] {
+    sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {path.string(), sdf::BadCachePolicy::Refuse}, log, {bricks});
+  });
+  EXPECT_NE(refused.find("codec version"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("pass --on-bad-cache rebuild to replace it"), std::string::npos) << refused;
+  const test::CommandResult inspect = test::run_sdfbench("inspect " + path.string());
+  EXPECT_EQ(inspect.exit_code, 0) << inspect.output;
+  EXPECT_NE(inspect.output.find("brick fields v" + std::to_string(codec.version + 1) + " (not read)"), std::string::npos)
+      << inspect.output;
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {path.string(), sdf::BadCachePolicy::Rebuild}, log, {bricks});
+  EXPECT_NE(log.str().find("rebuilding"), std::string::npos) << log.str();
+  EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {bricks}));
+
+  Bytes unknown = valid;
+  for (const size_t e : entries_of_kind(valid, codec.kind)) poke<uint32_t>(unknown, e + kKind, 77u);
+  sdf::reseal_sdf_cache(unknown);
+  write_all(path, unknown);
+  EXPECT_EQ(sdf::decode_sdf_cache(unknown, "unknown").structures.at(2).name, "kind 77");
+  EXPECT_NE(error_of([&] { sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {bricks}); }).find("holds no brick fields"),
+            std::string::npos);
+  log.str("");
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {path.string(), sdf::BadCachePolicy::Refuse}, log, {bricks});
+  EXPECT_NE(log.str().find("added brick fields"), std::string::npos) << log.str();
+  EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {bricks}));
+}
+
+// A cache of format version 2 (build parameters in the header, before the per-structure codecs)
+// is refused as another version with how to replace it, and rebuilt when asked.
+TEST_F(SdfCacheTest, AVersion2CacheSaysHowToRebuildIt) {
+  const fs::path path = write_valid();
+  Bytes old = read_all(path);
+  poke<uint32_t>(old, 8, 2u);
+  sdf::reseal_sdf_cache(old);
+  write_all(path, old);
+  std::ostringstream log;
+  const std::string refused = error_of([&] {
+    sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {path.string(), sdf::BadCachePolicy::Refuse}, log);
+  });
+  for (const char* words : {"has format version 2; this sdfbench reads version 3", "written by an older sdfbench",
+                            "rebuild it with `sdfbench build --cache`", "pass --on-bad-cache rebuild to replace it"})
+    EXPECT_NE(refused.find(words), std::string::npos) << refused;
+  const test::CommandResult render = test::run_sdfbench("render --scene thesis:sphere:10 --backend sdf-cpu --size 16x9 --frames 1 "
+                                                        "--warmup 0 --cells-per-extent 8 --hash-cell 20 --octree-depth 2 --cache " +
+                                                        path.string());
+  EXPECT_EQ(render.exit_code, 1) << render.output;
+  EXPECT_NE(render.output.find("format version 2"), std::string::npos) << render.output;
+  EXPECT_NE(render.output.find("--on-bad-cache rebuild"), std::string::npos) << render.output;
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {path.string(), sdf::BadCachePolicy::Rebuild}, log);
+  EXPECT_NE(log.str().find("format version 2"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("rebuilding"), std::string::npos) << log.str();
+  EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash()));
 }
 
 // A coarse global field (about 3 voxels per object, f16): a few hundred bricks, built in milliseconds.
@@ -329,13 +457,13 @@ sdf::GlobalFieldParams small_global(const Scene& scene) {
 // still good for the other backends.
 TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
   const sdf::GlobalFieldParams global = small_global(*scene_);
-  const sdf::SceneSdf with = sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), nullptr, &global);
+  const sdf::SceneSdf with = sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), {global});
   ASSERT_TRUE(with.global_params.has_value());
   ASSERT_GT(with.global_field.field.stored_bricks(), 0u);
   ASSERT_FALSE(with.global_field.list_instances.empty());
   const fs::path path = dir_.path() / "global.sdfcache";
   sdf::write_sdf_cache(path, *scene_, with, small_grid());
-  const sdf::SceneSdf loaded = sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), nullptr, &global);
+  const sdf::SceneSdf loaded = sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {global});
   ASSERT_TRUE(loaded.global_params.has_value());
   EXPECT_TRUE(sdf::same(*loaded.global_params, global));
   EXPECT_EQ(loaded.global_params->voxel, global.voxel);
@@ -367,7 +495,7 @@ TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
   sdf::GlobalFieldParams other = global;
   other.format = sdf::SdfFormat::u8;
   try {
-    sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), nullptr, &other);
+    sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {other});
     ADD_FAILURE() << "a cache with other global field parameters was accepted";
   } catch (const Error& e) {
     const std::string message = e.what();
@@ -375,7 +503,7 @@ TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
     EXPECT_NE(message.find(sdf::describe(global) + ", requested " + sdf::describe(other)), std::string::npos) << message;
   }
   try {
-    sdf::load_sdf_cache(write_valid(), *scene_, small_grid(), small_hash(), nullptr, &global);
+    sdf::load_sdf_cache(write_valid(), *scene_, small_grid(), small_hash(), {global});
     ADD_FAILURE() << "a cache without a global field was accepted for sdf-global";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("holds no global field"), std::string::npos) << e.what();
@@ -386,33 +514,33 @@ TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
   std::ostringstream log;
   const fs::path plain = write_valid();
   const sdf::SceneSdf completed = sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(),
-                                                        {plain.string(), sdf::BadCachePolicy::Refuse}, log, nullptr, &global);
+                                                        {plain.string(), sdf::BadCachePolicy::Refuse}, log, {global});
   ASSERT_TRUE(completed.global_params.has_value());
   EXPECT_EQ(completed.global_field.field.atlas, a.field.atlas);
   EXPECT_EQ(completed.global_field.list_instances, a.list_instances);
   EXPECT_NE(log.str().find("SDF cache: added the global field (" + sdf::describe(global) + ") to '" + plain.string() + "'"),
             std::string::npos)
       << log.str();
-  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), nullptr, &global));
+  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), {global}));
   log.str("");
-  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, nullptr, &global);
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, {global});
   EXPECT_NE(log.str().find("build skipped"), std::string::npos) << log.str();
   EXPECT_EQ(log.str().find("added"), std::string::npos) << log.str();
   EXPECT_THROW(sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log,
-                                     nullptr, &other),
+                                     {other}),
                Error);
   log.str("");
-  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Rebuild}, log, nullptr, &other);
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Rebuild}, log, {other});
   EXPECT_NE(log.str().find("rebuilding"), std::string::npos) << log.str();
-  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), nullptr, &other));
+  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), {other}));
   // Brick fields and the global field together: both completed in one pass.
   const sdf::BrickFieldParams bricks{16, 3, sdf::SdfFormat::f32};
   const fs::path both = write_valid();
   log.str("");
-  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {both.string(), sdf::BadCachePolicy::Refuse}, log, &bricks, &global);
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {both.string(), sdf::BadCachePolicy::Refuse}, log, {bricks, global});
   EXPECT_NE(log.str().find("added brick fields"), std::string::npos) << log.str();
   EXPECT_NE(log.str().find("added the global field"), std::string::npos) << log.str();
-  EXPECT_NO_THROW(sdf::load_sdf_cache(both, *scene_, small_grid(), small_hash(), &bricks, &global));
+  EXPECT_NO_THROW(sdf::load_sdf_cache(both, *scene_, small_grid(), small_hash(), {bricks, global}));
 }
 
 // Hostile global sections and parameters, re-checksummed: each refused with a clear message by
@@ -421,7 +549,7 @@ TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
 TEST_F(SdfCacheTest, HostileGlobalFieldsAreRefused) {
   const sdf::GlobalFieldParams global = small_global(*scene_);
   const fs::path path = dir_.path() / "global.sdfcache";
-  sdf::write_sdf_cache(path, *scene_, sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), nullptr, &global), small_grid());
+  sdf::write_sdf_cache(path, *scene_, sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), {global}), small_grid());
 
   // A clamped f16 value rounds to the nearest half, past the band by up to its quantization
   // (band / 2048): accepted; a value farther out: refused.
@@ -429,16 +557,16 @@ TEST_F(SdfCacheTest, HostileGlobalFieldsAreRefused) {
   const sdf::SdfCacheContents c = sdf::decode_sdf_cache(valid, "valid");
   {
     sdf::SdfCacheContents edge = c;
-    const float band = edge.global_field.field.band, quantization = edge.global_field.field.quantization;
+    const float band = edge.sdf.global_field.field.band, quantization = edge.sdf.global_field.field.quantization;
     for (const float v : {band, -band, band + 0.9f * quantization}) {
       const uint16_t h = glm::packHalf1x16(v);
       if (std::abs(glm::unpackHalf1x16(h)) > band + quantization) continue;  // not a value the build can store
-      std::memcpy(edge.global_field.field.atlas.data(), &h, sizeof h);
+      std::memcpy(edge.sdf.global_field.field.atlas.data(), &h, sizeof h);
       EXPECT_NO_THROW(sdf::decode_sdf_cache(sdf::encode_sdf_cache(edge), "edge")) << v << " for band " << band;
     }
     EXPECT_LE(std::abs(glm::unpackHalf1x16(glm::packHalf1x16(band))), band + quantization);
     const uint16_t beyond = glm::packHalf1x16(-band * 1.01f);
-    std::memcpy(edge.global_field.field.atlas.data(), &beyond, sizeof beyond);
+    std::memcpy(edge.sdf.global_field.field.atlas.data(), &beyond, sizeof beyond);
     EXPECT_THROW(sdf::decode_sdf_cache(sdf::encode_sdf_cache(edge), "beyond"), Error);
   }
   auto section = [&](const std::string& name) {
@@ -491,10 +619,12 @@ TEST_F(SdfCacheTest, HostileGlobalFieldsAreRefused) {
        [&](Bytes& b) { poke<float>(b, section("global coarse level").offset, -1.0f); }},
       {"non-finite coarse value", "coarse value is not finite",
        [&](Bytes& b) { poke<float>(b, section("global coarse level").offset + 4, NAN); }},
-      {"bad band", "global field parameters", [&](Bytes& b) { poke<uint32_t>(b, 88, peek<uint32_t>(b, 88) & ~0xffu); }},
-      {"bad format", "global field parameters", [&](Bytes& b) { poke<uint32_t>(b, 88, 2u | 9u << 8); }},
-      {"non-finite voxel request", "global field parameters", [&](Bytes& b) { poke<float>(b, 92, NAN); }},
-      {"global sections without a global field", "section count", [&](Bytes& b) { poke<uint32_t>(b, 88, 0u); }},
+      {"bad band", "global field parameters", [&](Bytes& b) { poke<uint32_t>(b, section("global params").offset + 4, 0u); }},
+      {"bad format", "global field parameters", [&](Bytes& b) { poke<uint32_t>(b, section("global params").offset + 8, 9u); }},
+      {"non-finite voxel request", "global field parameters",
+       [&](Bytes& b) { poke<float>(b, section("global params").offset, NAN); }},
+      {"a global section missing", "global field: global list instances is missing",
+       [&](Bytes& b) { poke<uint32_t>(b, entries_named(c, "global list instances").at(0) + kKind, 99u); }},
   };
   for (const auto& k : cases) {
     SCOPED_TRACE(k.name);

@@ -36,20 +36,6 @@ void store_sample(SdfFormat format, float band, float value, uint8_t* out) {
   }
 }
 
-std::string to_string(SdfFormat format) {
-  switch (format) {
-    case SdfFormat::f32: return "f32";
-    case SdfFormat::f16: return "f16";
-    case SdfFormat::u8: return "u8";
-  }
-  return "?";
-}
-
-std::string describe(const BrickFieldParams& params) {
-  return "--voxels " + std::to_string(params.voxels) + " --brick-band " + std::to_string(params.band) + " --sdf-format " +
-         to_string(params.format);
-}
-
 size_t BrickField::bytes() const {
   return indirection.size() * sizeof(uint32_t) + atlas.size() + coarse.size() * sizeof(float);
 }

@@ -6,7 +6,6 @@
 #include <cstring>
 #include <limits>
 #include <span>
-#include <sstream>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -65,14 +64,6 @@ Composite composite(const Scene& scene, const SamplingGrids& sampling, const std
 float signed_value(const Composite& c) { return c.inside ? -c.value : c.value; }
 
 }  // namespace
-
-std::string describe(const GlobalFieldParams& params) {
-  std::ostringstream out;
-  out << "--global-voxel ";
-  if (params.voxel > 0.0f) out << params.voxel; else out << "auto";
-  out << " --brick-band " << params.band << " --sdf-format " << to_string(params.format);
-  return out.str();
-}
 
 void validate(const GlobalFieldParams& params) {
   if (!(params.voxel >= 0.0f) || !std::isfinite(params.voxel))

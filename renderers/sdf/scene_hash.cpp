@@ -337,25 +337,27 @@ size_t bytes(const SceneSdf& sdf) {
 }
 
 SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
-                         const BrickFieldParams* bricks, const GlobalFieldParams* global) {
+                         const StructureRequests& extras) {
   scene_hash_dims(scene, hash_params);  // an impossible hash is refused before the mesh grids are built
-  if (bricks) validate(*bricks);
-  if (global) validate(*global);
+  for (const StructureRequest& extra : extras) validate(extra);
   SceneSdf sdf;
   for (const Mesh& mesh : scene.meshes) sdf.mesh_grids.push_back(build_mesh_distance_grid(mesh, mesh_params));
   sdf.hash = build_scene_hash(scene, sdf.mesh_grids, hash_params);
   for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
-  if (bricks) add_brick_fields(sdf, scene, mesh_params, *bricks);
-  if (global) add_global_field(sdf, scene, mesh_params, *global);
+  for (const StructureRequest& extra : extras) add_structure(sdf, scene, mesh_params, extra);
   return sdf;
 }
 
-void add_global_field(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const GlobalFieldParams& global) {
+void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const StructureRequest& request) {
+  std::visit([&](const auto& params) { add_structure(sdf, scene, mesh_params, params); }, request);
+}
+
+void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const GlobalFieldParams& global) {
   sdf.global_field = build_global_field(scene, sdf, mesh_params, global);
   sdf.global_params = global;
 }
 
-void add_brick_fields(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const BrickFieldParams& bricks) {
+void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const BrickFieldParams& bricks) {
   sdf.brick_fields.clear();
   for (size_t m = 0; m < scene.meshes.size(); ++m)
     sdf.brick_fields.push_back(build_brick_field(scene.meshes[m], sdf.mesh_grids[m], mesh_params, bricks));

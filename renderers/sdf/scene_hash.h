@@ -11,6 +11,7 @@
 #include "renderers/sdf/brick_field.h"
 #include "renderers/sdf/global_field.h"
 #include "renderers/sdf/mesh_distance_grid.h"
+#include "renderers/sdf/structure_request.h"
 #include "scenes/scene.h"
 
 namespace sdfbench::sdf {
@@ -80,14 +81,15 @@ glm::uvec3 scene_hash_dims(const Scene& scene, const SceneHashParams& params);
 // Throws Error when the scene hash, or its octrees as they grow, would pass the limits above
 // (naming the flags to change); long builds print progress on stderr (util/progress.h).
 SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGrid>& grids, const SceneHashParams& params);
-// `bricks` (sdf-bricks, else null): also a brick field per mesh; `global` (sdf-global, else
-// null): also the scene's global field.
+// `extras`: the optional structures asked for besides the exact ones (structure_request.h): a
+// brick field per mesh for sdf-bricks, the scene's global field for sdf-global.
 SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
-                         const BrickFieldParams* bricks = nullptr, const GlobalFieldParams* global = nullptr);
-// Adds (replaces) the brick fields of `sdf`'s meshes, sampled from its mesh grids.
-void add_brick_fields(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const BrickFieldParams& bricks);
-// Adds (replaces) `sdf`'s global field, sampled from its mesh grids.
-void add_global_field(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const GlobalFieldParams& global);
+                         const StructureRequests& extras = {});
+// Adds (replaces) one optional structure of `sdf`, sampled from its mesh grids: each structure's
+// overload, and the request's (which calls the one its parameters name).
+void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const BrickFieldParams& bricks);
+void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const GlobalFieldParams& global);
+void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const StructureRequest& request);
 
 // Distance from world point p to one instance's surface: the mesh grid distance taken in the
 // instance's frame and scaled back (exact inside the mesh grid box, a lower bound outside).

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "renderers/sdf/cache/section_codec.h"
 #include "renderers/sdf/sdf_cache_format.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -78,7 +79,7 @@ uint64_t scene_geometry_hash(const Scene& scene) {
 
 namespace {
 
-// Format 1 has no section for far cells (mesh_distance_grid.h): scaled grids are not cached yet.
+// The mesh grid codec has no section for far cells (mesh_distance_grid.h): scaled grids are not cached yet.
 void check_cacheable(const fs::path& path, const Scene& scene, const MeshGridParams& mesh_params) {
   for (const Mesh& mesh : scene.meshes)
     if (has_far_cells(mesh_params, mesh.triangles.size()))
@@ -95,17 +96,11 @@ void write_sdf_cache(const fs::path& path, const Scene& scene, const SceneSdf& s
   c.scene_hash = scene_geometry_hash(scene);
   c.instance_count = static_cast<uint32_t>(scene.instances.size());
   c.mesh_params = mesh_params;
-  c.hash_params = sdf.hash.params;
-  c.mesh_grids = sdf.mesh_grids;
   for (const Mesh& mesh : scene.meshes) {
     c.mesh_triangles.push_back(static_cast<uint32_t>(mesh.triangles.size()));
     c.mesh_vertices.push_back(static_cast<uint32_t>(mesh.positions.size()));
   }
-  c.hash = sdf.hash;
-  c.brick_params = sdf.brick_params;
-  c.brick_fields = sdf.brick_fields;
-  c.global_params = sdf.global_params;
-  if (sdf.global_params) c.global_field = sdf.global_field;
+  c.sdf = sdf;  // a copy for the encoder (world_to_object is not written)
   const std::vector<std::byte> bytes = encode_sdf_cache(c);
   if (bytes.size() > kMaxSdfCacheBytes)  // the loader would refuse it
     throw Error("SDF cache '" + path.string() + "' would be " + describe_bytes(bytes.size()) + ", more than the limit for a cache (" +
@@ -121,10 +116,17 @@ std::vector<std::byte> read_cache(const InputFile& file, const fs::path& path) {
   return file.read_all();
 }
 
-// The cache already read (and bounded), checked completely and against this scene.
-SceneSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, const Scene& scene,
-                        const MeshGridParams& mesh_params, const SceneHashParams& hash_params, const BrickFieldParams* bricks,
-                        const GlobalFieldParams* global) {
+// A cache checked completely and against this scene, and the requested structures it lacks.
+struct CachedSdf {
+  SceneSdf sdf;
+  StructureRequests missing;
+};
+
+// The cache already read (and bounded), checked completely and against this scene. A requested
+// structure it lacks is an error unless `complete` (the caller then builds it).
+CachedSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, const Scene& scene,
+                         const MeshGridParams& mesh_params, const SceneHashParams& hash_params, const StructureRequests& extras,
+                         bool complete) {
   check_cacheable(path, scene, mesh_params);
   SdfCacheContents c = decode_sdf_cache(bytes, path.string());
   const std::string stale = "SDF cache '" + path.string() + "' is stale: ";
@@ -132,62 +134,56 @@ SceneSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, 
     throw Error(stale + "it was built for different geometry (a different scene, meshes, transforms or sdfbench builder)");
   if (!same(c.mesh_params, mesh_params))
     throw Error(stale + "built with mesh grid " + describe(c.mesh_params) + ", requested " + describe(mesh_params));
-  if (!same(c.hash_params, hash_params))
-    throw Error(stale + "built with " + describe(c.hash_params) + ", requested " + describe(hash_params));
+  if (!same(c.sdf.hash.params, hash_params))
+    throw Error(stale + "built with " + describe(c.sdf.hash.params) + ", requested " + describe(hash_params));
   // Implied by the geometry hash, but the renderers index meshes with these: check explicitly.
-  bool counts_match = c.mesh_grids.size() == scene.meshes.size() && c.instance_count == scene.instances.size();
+  bool counts_match = c.sdf.mesh_grids.size() == scene.meshes.size() && c.instance_count == scene.instances.size();
   for (size_t m = 0; counts_match && m < scene.meshes.size(); ++m)
     counts_match = c.mesh_triangles[m] == scene.meshes[m].triangles.size() && c.mesh_vertices[m] == scene.meshes[m].positions.size();
   if (!counts_match) throw Error(stale + "its mesh or instance counts differ from the scene's");
-  if (bricks && !c.brick_params) throw Error(stale + "it holds no brick fields (requested " + describe(*bricks) + ")");
-  if (bricks && !same(*c.brick_params, *bricks))
-    throw Error(stale + "built with brick fields " + describe(*c.brick_params) + ", requested " + describe(*bricks));
-  if (global && !c.global_params) throw Error(stale + "it holds no global field (requested " + describe(*global) + ")");
-  if (global && !same(*c.global_params, *global))
-    throw Error(stale + "built with a global field " + describe(*c.global_params) + ", requested " + describe(*global));
-  SceneSdf sdf;
-  sdf.mesh_grids = std::move(c.mesh_grids);
-  sdf.hash = std::move(c.hash);
-  sdf.brick_params = c.brick_params;
-  sdf.brick_fields = std::move(c.brick_fields);
-  sdf.global_params = c.global_params;
-  sdf.global_field = std::move(c.global_field);
-  for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
-  return sdf;
+  CachedSdf cached;
+  for (const StructureRequest& extra : extras) {
+    const SectionCodec& codec = codec_for(extra);
+    if (codec.held(c.sdf)) {
+      if (const std::string differs = codec.differs(c.sdf, extra); !differs.empty()) throw Error(stale + differs);
+      continue;
+    }
+    for (const StoredStructure& s : c.structures)
+      if (s.kind == codec.kind)  // held, but in a layout this sdfbench does not read
+        throw Error(stale + "it holds " + codec.name + " in codec version " + std::to_string(s.version) +
+                    ", this sdfbench reads version " + std::to_string(codec.version));
+    if (!complete) throw Error(stale + "it holds no " + codec.name + " (requested " + describe(extra) + ")");
+    cached.missing.push_back(extra);
+  }
+  cached.sdf = std::move(c.sdf);
+  for (const Instance& instance : scene.instances) cached.sdf.world_to_object.push_back(instance.transform.world_to_object());
+  return cached;
 }
 
 }  // namespace
 
 SceneSdf load_sdf_cache(const fs::path& path, const Scene& scene, const MeshGridParams& mesh_params,
-                        const SceneHashParams& hash_params, const BrickFieldParams* bricks, const GlobalFieldParams* global) {
+                        const SceneHashParams& hash_params, const StructureRequests& extras) {
   return sdf_from_cache(read_cache(InputFile(path, "SDF cache", kMaxSdfCacheBytes), path), path, scene, mesh_params, hash_params,
-                        bricks, global);
+                        extras, false)
+      .sdf;
 }
 
 SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
-                          const CacheOptions& cache, std::ostream& log, const BrickFieldParams* bricks,
-                          const GlobalFieldParams* global) {
-  if (bricks) validate(*bricks);  // bad parameters are named before any cache is read
-  if (global) validate(*global);
-  if (cache.path.empty()) return build_scene_sdf(scene, mesh_params, hash_params, bricks, global);
+                          const CacheOptions& cache, std::ostream& log, const StructureRequests& extras) {
+  for (const StructureRequest& extra : extras) validate(extra);  // bad parameters are named before any cache is read
+  if (cache.path.empty()) return build_scene_sdf(scene, mesh_params, hash_params, extras);
   const fs::path path = cache.path;
   std::error_code ec;
   if (fs::exists(path, ec)) {
     const auto start = std::chrono::steady_clock::now();
     // Outside the policy: a FIFO, device, directory or oversized file is no cache to replace.
     const InputFile file(path, "SDF cache", kMaxSdfCacheBytes);
-    std::optional<SceneSdf> loaded;
+    std::optional<CachedSdf> loaded;
     try {
-      // A valid cache without brick fields (or without a global field) is completed, not stale:
-      // its exact structures are what the fields are sampled from.
-      SceneSdf sdf = sdf_from_cache(read_cache(file, path), path, scene, mesh_params, hash_params, nullptr, nullptr);
-      if (bricks && sdf.brick_params && !same(*sdf.brick_params, *bricks))
-        throw Error("SDF cache '" + path.string() + "' is stale: built with brick fields " + describe(*sdf.brick_params) +
-                    ", requested " + describe(*bricks));
-      if (global && sdf.global_params && !same(*sdf.global_params, *global))
-        throw Error("SDF cache '" + path.string() + "' is stale: built with a global field " + describe(*sdf.global_params) +
-                    ", requested " + describe(*global));
-      loaded = std::move(sdf);
+      // A valid cache without a requested structure is completed, not stale: its exact
+      // structures are what the fields are sampled from.
+      loaded = sdf_from_cache(read_cache(file, path), path, scene, mesh_params, hash_params, extras, true);
     } catch (const Error& e) {
       if (cache.on_bad == BadCachePolicy::Refuse)
         throw Error(std::string(e.what()) + "; pass --on-bad-cache rebuild to replace it");
@@ -197,17 +193,15 @@ SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params,
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       log << "SDF cache: loaded '" << path.string() << "' in " << static_cast<long>(ms) << " ms (build skipped)\n";
       // Outside the policy: a field that cannot be built (or a cache too big to write) is no bad cache.
-      SceneSdf& sdf = *loaded;
-      const bool add_bricks = bricks && !sdf.brick_params, add_global = global && !sdf.global_params;
-      if (add_bricks) add_brick_fields(sdf, scene, mesh_params, *bricks);
-      if (add_global) add_global_field(sdf, scene, mesh_params, *global);
-      if (add_bricks || add_global) write_sdf_cache(path, scene, sdf, mesh_params);
-      if (add_bricks) log << "SDF cache: added brick fields (" << describe(*bricks) << ") to '" << path.string() << "'\n";
-      if (add_global) log << "SDF cache: added the global field (" << describe(*global) << ") to '" << path.string() << "'\n";
+      SceneSdf& sdf = loaded->sdf;
+      for (const StructureRequest& extra : loaded->missing) add_structure(sdf, scene, mesh_params, extra);
+      if (!loaded->missing.empty()) write_sdf_cache(path, scene, sdf, mesh_params);
+      for (const StructureRequest& extra : loaded->missing)
+        log << "SDF cache: added " << codec_for(extra).the_name << " (" << describe(extra) << ") to '" << path.string() << "'\n";
       return std::move(sdf);
     }
   }
-  SceneSdf sdf = build_scene_sdf(scene, mesh_params, hash_params, bricks, global);
+  SceneSdf sdf = build_scene_sdf(scene, mesh_params, hash_params, extras);
   write_sdf_cache(path, scene, sdf, mesh_params);
   log << "SDF cache: built and wrote '" << path.string() << "'\n";
   return sdf;

@@ -1,6 +1,6 @@
 #pragma once
 // The on-disk cache of a scene's SDF structures (mesh distance grids + scene hash/octrees, and
-// sdf-bricks' brick fields and sdf-global's global field when built), so
+// the optional structures when built: sdf-bricks' brick fields, sdf-global's global field), so
 // that renders and benchmarks reuse a build. The file format and its validation live in
 // sdf_cache_format.h; this file ties a cache to a scene: its content hash, the build parameters,
 // and the policy for a cache that does not match.
@@ -28,12 +28,11 @@ void write_sdf_cache(const std::filesystem::path& path, const Scene& scene, cons
 // parameters. Throws Error with a clear message for a missing, special (FIFO, device,
 // directory), oversized, truncated, corrupt, hostile or stale file; never returns structures
 // that were not validated.
-// `bricks` (sdf-bricks, else null): the cache must also hold brick fields built with these
-// parameters (a cache with them serves the exact backends too). `global` (sdf-global, else null):
-// likewise, the cache must hold the scene's global field built with these parameters.
+// `extras`: the optional structures the cache must also hold, built with these parameters
+// (brick fields for sdf-bricks, the global field for sdf-global); a cache with more serves the
+// backends that need fewer.
 SceneSdf load_sdf_cache(const std::filesystem::path& path, const Scene& scene, const MeshGridParams& mesh_params,
-                        const SceneHashParams& hash_params, const BrickFieldParams* bricks = nullptr,
-                        const GlobalFieldParams* global = nullptr);
+                        const SceneHashParams& hash_params, const StructureRequests& extras = {});
 
 enum class BadCachePolicy {
   Refuse,   // an invalid or stale cache is an error (default: never silently pay a rebuild)
@@ -48,11 +47,9 @@ struct CacheOptions {
 // The one entry point for backends: no path -> build; a missing file -> build and write it; a
 // valid matching file -> load it (skipping the build); an invalid or stale file -> the policy;
 // something that cannot be a cache (not a regular file, or over the size limit) -> an error.
-// With `bricks`, a valid cache without brick fields gets them added (and is written back); one
-// with other brick parameters is stale. The same with `global` for the global field. Says on `log`
-// which of these happened.
+// A valid cache without one of `extras` gets it added (and is written back); one holding it with
+// other parameters (or in another codec version) is stale. Says on `log` which of these happened.
 SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
-                          const CacheOptions& cache, std::ostream& log, const BrickFieldParams* bricks = nullptr,
-                          const GlobalFieldParams* global = nullptr);
+                          const CacheOptions& cache, std::ostream& log, const StructureRequests& extras = {});
 
 }  // namespace sdfbench::sdf

@@ -45,7 +45,7 @@ void SdfBricksRenderer::prepare(const Scene& scene) {
   BrickGpuArrays bricks;
   {  // the CPU structures are freed once flattened
     const sdf::SceneSdf sdf =
-        sdf::obtain_scene_sdf(scene, sdf::mesh_grid_params(options_.params), hash_params_, options_.cache, std::cerr, &field_params_);
+        sdf::obtain_scene_sdf(scene, sdf::mesh_grid_params(options_.params), hash_params_, options_.cache, std::cerr, {field_params_});
     const std::vector<sdf::BrickField>& fields = sdf.brick_fields;
     stats_ = StructureStats{sdf::build_ms(sdf), sdf::bytes(sdf), {}, std::string("brick_fetch=") + (sampler_ ? "sampler" : "texel")};
     arrays = flatten_for_gpu(scene, sdf, tracing_, LeafLists::overlapping_first);

@@ -69,7 +69,7 @@ void SdfGlobalRenderer::prepare(const Scene& scene) {
   {  // the CPU structures are freed once flattened
     const sdf::SceneSdf sdf =
         sdf::obtain_scene_sdf(scene, sdf::mesh_grid_params(options_.params), one_cell_hash(scene, field_params_.max_bytes),
-                              options_.cache, std::cerr, nullptr, &field_params_);
+                              options_.cache, std::cerr, {field_params_});
     // What the kernel reads: the mesh grids (exact hits) and the global field with its lists.
     double ms = sdf.global_field.build_ms;
     size_t bytes = sdf.global_field.bytes();

@@ -29,15 +29,23 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const sdf::SdfCacheContents c =
         sdf::decode_sdf_cache(std::span(reinterpret_cast<const std::byte*>(data), size), "fuzz input");
     // Walk what was accepted the way a renderer does: every index must be in range.
-    for (uint32_t root : c.hash.cell_root) {
+    const sdf::SceneHash& hash = c.sdf.hash;
+    for (uint32_t root : hash.cell_root) {
       uint32_t node = root;
-      while (c.hash.nodes.at(node).first_child >= 0) node = static_cast<uint32_t>(c.hash.nodes[node].first_child) + 7;
-      const sdf::OctreeNode& leaf = c.hash.nodes[node];
-      for (uint32_t k = 0; k < leaf.list_count; ++k) (void)c.hash.instance_lists.at(leaf.list_begin + k);
+      while (hash.nodes.at(node).first_child >= 0) node = static_cast<uint32_t>(hash.nodes[node].first_child) + 7;
+      const sdf::OctreeNode& leaf = hash.nodes[node];
+      for (uint32_t k = 0; k < leaf.list_count; ++k) (void)hash.instance_lists.at(leaf.list_begin + k);
+    }
+    // The brick fields as sdf-bricks walks them: one per mesh, a stored brick's atlas samples.
+    if (c.sdf.brick_params) {
+      if (c.sdf.brick_fields.size() != c.sdf.mesh_grids.size()) throw std::logic_error("brick fields do not match the meshes");
+      for (const sdf::BrickField& f : c.sdf.brick_fields)
+        for (uint32_t slot : f.indirection)
+          if (slot != sdf::kEmptyBrick) (void)f.atlas.at((size_t{slot} + 1) * sdf::kBrickSamples * sdf::bytes_per_sample(f.format) - 1);
     }
     // The global field as sdf-global walks it: a brick's atlas samples and its instance list.
-    if (c.global_params) {
-      const sdf::GlobalField& g = c.global_field;
+    if (c.sdf.global_params) {
+      const sdf::GlobalField& g = c.sdf.global_field;
       const size_t brick_bytes = sdf::kBrickSamples * sdf::bytes_per_sample(g.field.format);
       for (uint32_t slot : g.field.indirection) {
         if (slot == sdf::kEmptyBrick) continue;
@@ -58,7 +66,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 #ifndef SDFBENCH_LIBFUZZER
 namespace {
 
-// A small valid cache built by hand: one mesh (2 triangles, 4 vertices, 2x2x2 cells) and a
+// The seed: a small valid cache built by hand and encoded by the format itself (so it follows the
+// format's version; there is no seed file to regenerate): one mesh (2 triangles, 4 vertices, 2x2x2 cells) and a
 // 2x1x1 hash whose first cell holds an octree of depth 1, and a brick field of 2x1x1 bricks
 // (one stored, f16) and a global field of 1x1x2 bricks (one stored, f32, listing two instances) so
 // that the brick and global sections are fuzzed too.
@@ -66,8 +75,9 @@ std::vector<std::byte> seed_cache() {
   sdf::SdfCacheContents c;
   c.scene_hash = 0x1234;
   c.instance_count = 3;
-  c.hash_params.hash_cell = 2.0f;
-  c.hash_params.octree_depth = 1;
+  sdf::SceneSdf& s = c.sdf;
+  s.hash.params.hash_cell = 2.0f;
+  s.hash.params.octree_depth = 1;
   sdf::MeshDistanceGrid g;
   g.origin = glm::vec3(-1.0f);
   g.cell_size = 1.0f;
@@ -77,18 +87,18 @@ std::vector<std::byte> seed_cache() {
   g.face_normals = {glm::vec3(0, 0, 1), glm::vec3(0, 0, 1)};
   g.edge_normals.assign(6, glm::vec3(0, 0, 1));
   g.vertex_normals.assign(4, glm::vec3(0, 0, 1));
-  c.mesh_grids = {g};
+  s.mesh_grids = {g};
   c.mesh_triangles = {2};
   c.mesh_vertices = {4};
-  c.hash.origin = glm::vec3(0.0f);
-  c.hash.cell_size = 2.0f;
-  c.hash.dims = glm::uvec3(2, 1, 1);
-  c.hash.cell_root = {0, 9};
-  c.hash.nodes.push_back({1, 0, 0, 0});
-  for (uint32_t k = 0; k < 8; ++k) c.hash.nodes.push_back({-1, k % 3, 1, 1});
-  c.hash.nodes.push_back({-1, 0, 3, 0});
-  c.hash.instance_lists = {0, 1, 2};
-  c.brick_params = sdf::BrickFieldParams{8, 2, sdf::SdfFormat::f16};
+  s.hash.origin = glm::vec3(0.0f);
+  s.hash.cell_size = 2.0f;
+  s.hash.dims = glm::uvec3(2, 1, 1);
+  s.hash.cell_root = {0, 9};
+  s.hash.nodes.push_back({1, 0, 0, 0});
+  for (uint32_t k = 0; k < 8; ++k) s.hash.nodes.push_back({-1, k % 3, 1, 1});
+  s.hash.nodes.push_back({-1, 0, 3, 0});
+  s.hash.instance_lists = {0, 1, 2};
+  s.brick_params = sdf::BrickFieldParams{8, 2, sdf::SdfFormat::f16};
   sdf::BrickField f;
   f.origin = glm::vec3(-1.5f);
   f.voxel = 0.25f;
@@ -97,13 +107,13 @@ std::vector<std::byte> seed_cache() {
   f.indirection = {0, sdf::kEmptyBrick};
   f.atlas.assign(sdf::kBrickSamples * 2, 0);  // half 0.0
   f.coarse.assign(12, 0.5f);
-  c.brick_fields = {f};
+  s.brick_fields = {f};
   sdf::GlobalFieldParams gp;
   gp.voxel = 0.5f;
   gp.band = 2;
   gp.format = sdf::SdfFormat::f32;
-  c.global_params = gp;
-  sdf::GlobalField& global = c.global_field;
+  s.global_params = gp;
+  sdf::GlobalField& global = s.global_field;
   global.voxel_request = 0.5f;
   global.field.origin = glm::vec3(-2.0f);
   global.field.voxel = 0.5f;
