@@ -21,6 +21,13 @@ struct BackendPartner {
   std::string what;   // the comparison in words ("a sampled per-mesh field against a BVH in a compute kernel")
 };
 
+using BackendFactory = std::function<std::unique_ptr<Renderer>(const BackendOptions&)>;
+// The factory of a renderer class constructed from BackendOptions.
+template <class R>
+BackendFactory factory() {
+  return [](const BackendOptions& options) { return std::make_unique<R>(options); };
+}
+
 struct BackendInfo {
   std::string name;
   // The kind of method, for the reports' "which structure wins where": "cpu-bvh" (Embree),
@@ -35,7 +42,7 @@ struct BackendInfo {
   bool stores_structure = false;  // builds SDF structures: --cache, build time and bytes in its rows
   std::vector<BackendPartner> partners;
   bool in_table = true;           // `sdfbench table` runs it unless --backends says otherwise
-  std::function<std::unique_ptr<Renderer>(const BackendOptions&)> create;
+  BackendFactory create;
 };
 
 // Every backend, built-in ones first, in the order help, tables and reports list them.

@@ -46,7 +46,7 @@ GpuBuffer node_buffer(const VulkanContext& context, const std::vector<BvhNode>& 
 }  // namespace
 
 BvhRenderer::BvhRenderer(const BackendOptions& options)
-    : context_(VulkanContext::Options{options.device, options.validation}),
+    : VulkanRenderer(options),
       kernels_(compute_tile_kernels(context_, "bvh.comp")),
       runner_(
           context_,
@@ -114,13 +114,9 @@ void BvhRenderer::prepare(const Scene& scene) {
 }
 
 BackendInfo bvh_backend() {
-  return {
-      .name = "bvh",
-      .kind = "compute-bvh",
-      .summary = "a two-level SAH BVH (Embree's builder) traversed in a Vulkan compute kernel",
-      .counters = true,
-      .create = [](const BackendOptions& options) { return std::make_unique<BvhRenderer>(options); },
-  };
+  return {.name = "bvh", .kind = "compute-bvh",
+          .summary = "a two-level SAH BVH (Embree's builder) traversed in a Vulkan compute kernel",
+          .counters = true, .create = factory<BvhRenderer>()};
 }
 
 }  // namespace sdfbench

@@ -5,27 +5,21 @@
 #include "renderers/renderer.h"
 #include "renderers/vulkan/gpu_buffer.h"
 #include "renderers/vulkan/triangle_buffers.h"
-#include "renderers/vulkan/vulkan_context.h"
 #include "renderers/vulkan/vulkan_frame_runner.h"
+#include "renderers/vulkan/vulkan_renderer.h"
 
 namespace sdfbench {
 
 // A two-level BVH traced in a Vulkan compute kernel (bvh.comp): the fair triangle baseline for the
 // SDF structures, run the way they are run, on the same device. Built on the CPU by Embree's BVH
 // builder (bvh_builder.h).
-struct BackendInfo;
-BackendInfo bvh_backend();  // its entry in renderers/backend_registry.h
-
-class BvhRenderer : public Renderer {
+class BvhRenderer : public VulkanRenderer {
  public:
   explicit BvhRenderer(const BackendOptions& options);
   ~BvhRenderer() override;
   std::string name() const override { return "bvh"; }
-  std::string device_name() const override { return context_.info().name; }
-  std::string driver_name() const override { return context_.info().driver + " " + context_.info().driver_info; }
   void prepare(const Scene& scene) override;
   FrameResult render(const FrameRequest& request) override { return runner_.run(request); }
-  uint32_t validation_messages() const override { return context_.validation_messages(); }
   std::optional<StructureStats> structure_stats() const override { return stats_; }
   // Inner-node depths of the prepared scene's BVHs: the instances' and the deepest mesh's. The
   // traversal stack holds as many entries per level as the deeper of the two.
@@ -41,7 +35,6 @@ class BvhRenderer : public Renderer {
   void limit_visits_for_testing(uint32_t visits) { visit_limit_ = visits; }
 
  private:
-  VulkanContext context_;
   RTCDevice embree_ = nullptr;  // for its BVH builder only
   std::unique_ptr<TriangleBuffers> tables_;
   GpuBuffer mesh_nodes_, top_nodes_;
@@ -54,5 +47,9 @@ class BvhRenderer : public Renderer {
   TileKernelFactory kernels_;  // bvh.comp; the runner's factory adds BVH_STACK_SIZE
   VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
 };
+
+// Its entry in the backend registry (renderers/backend_registry.h).
+struct BackendInfo;
+BackendInfo bvh_backend();
 
 }  // namespace sdfbench

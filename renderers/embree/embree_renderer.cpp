@@ -119,13 +119,9 @@ FrameResult EmbreeRenderer::render(const FrameRequest& request) {
 }
 
 BackendInfo embree_backend() {
-  return {
-      .name = "embree",
-      .kind = "cpu-bvh",
-      .summary = "Embree on the CPU: the reference every image is checked against",
-      .vulkan = false,
-      .create = [](const BackendOptions& options) { return std::make_unique<EmbreeRenderer>(options); },
-  };
+  return {.name = "embree", .kind = "cpu-bvh",
+          .summary = "Embree on the CPU: the reference every image is checked against",
+          .vulkan = false, .create = factory<EmbreeRenderer>()};
 }
 
 }  // namespace sdfbench

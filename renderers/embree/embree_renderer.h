@@ -12,9 +12,6 @@ namespace sdfbench {
 
 // CPU reference: Embree BVH, one scene per mesh plus one instance each, TBB over tiles with
 // an explicit thread count; shading is the GLSL program compiled as C++ (cpu_shading.h).
-struct BackendInfo;
-BackendInfo embree_backend();  // its entry in renderers/backend_registry.h
-
 class EmbreeRenderer : public Renderer {
  public:
   explicit EmbreeRenderer(const BackendOptions& options);
@@ -42,5 +39,9 @@ class EmbreeRenderer : public Renderer {
   const Scene* scene_ = nullptr;
   std::vector<glm::mat3> normal_to_world_;  // per instance
 };
+
+// Its entry in the backend registry (renderers/backend_registry.h).
+struct BackendInfo;
+BackendInfo embree_backend();
 
 }  // namespace sdfbench

@@ -144,7 +144,7 @@ CachedSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path,
   CachedSdf cached;
   for (const StructureRequest& extra : extras) {
     const SectionCodec& codec = codec_for(extra);
-    if (codec.held(c.sdf)) {
+    if (codec.holds(c.sdf)) {
       if (const std::string differs = codec.differs(c.sdf, extra); !differs.empty()) throw Error(stale + differs);
       continue;
     }

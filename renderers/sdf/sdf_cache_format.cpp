@@ -204,7 +204,7 @@ std::vector<std::byte> encode_sdf_cache(const SdfCacheContents& c) {
   h.instance_count = c.instance_count;
   SectionWriter out;
   for (const SectionCodec* codec : section_codecs()) {
-    if (codec->optional && !codec->held(c.sdf)) continue;
+    if (codec->optional && !codec->holds(c.sdf)) continue;
     out.begin(*codec);
     codec->encode(c, out);
   }

@@ -50,7 +50,7 @@ BackendInfo sdf_cpu_backend() {
   info.params = std::move(params);
   info.counters = info.steps = info.stores_structure = true;
   info.in_table = false;  // slow; for checking the structures
-  info.create = [](const BackendOptions& options) { return std::make_unique<SdfCpuRenderer>(options); };
+  info.create = factory<SdfCpuRenderer>();
   return info;
 }
 

@@ -9,9 +9,6 @@ namespace sdfbench {
 
 // The CPU reference for the SDF backends: the scene hash (+ octree) and mesh distance grids,
 // sphere-traced on the CPU with the GPU's parameters. Slow; for checking the structures.
-struct BackendInfo;
-BackendInfo sdf_cpu_backend();  // its entry in renderers/backend_registry.h
-
 class SdfCpuRenderer : public Renderer {
  public:
   explicit SdfCpuRenderer(const BackendOptions& options);
@@ -30,5 +27,9 @@ class SdfCpuRenderer : public Renderer {
   std::unique_ptr<sdf::SceneSdf> sdf_;
   std::unique_ptr<sdf::SphereTracer> tracer_;
 };
+
+// Its entry in the backend registry (renderers/backend_registry.h).
+struct BackendInfo;
+BackendInfo sdf_cpu_backend();
 
 }  // namespace sdfbench

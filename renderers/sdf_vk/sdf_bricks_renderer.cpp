@@ -31,11 +31,11 @@ sdf::BrickFieldParams brick_field_params(const BackendParams& params, uint64_t m
 }
 
 SdfBricksRenderer::SdfBricksRenderer(const BackendOptions& options)
-    : options_(options),
+    : VulkanRenderer(options),
+      options_(options),
       field_params_(brick_field_params(options.params, sdf::max_structure_bytes(options.params))),
       hash_params_(sdf::scene_hash_params(options.params)),
       tracing_(sdf::trace_params(options.params)),
-      context_(VulkanContext::Options{options.device, options.validation}),
       sampler_(use_sampler(options.params.text("brick_fetch"), context_.info())),
       runner_(context_, compute_tile_kernels(context_, "sdf_bricks.comp", kernel_defines(options, sampler_)), kBrickCounters,
               options.whitted_passes) {}
@@ -84,7 +84,7 @@ BackendInfo sdf_bricks_backend() {
   info.counters = info.steps = info.stores_structure = true;
   info.partners = {{"sdf-octree", "a sampled per-mesh field against the exact one"},
                    {"bvh", "a sampled per-mesh field against a BVH in a compute kernel"}};
-  info.create = [](const BackendOptions& options) { return std::make_unique<SdfBricksRenderer>(options); };
+  info.create = factory<SdfBricksRenderer>();
   return info;
 }
 

@@ -8,26 +8,20 @@
 #include "renderers/sdf/sphere_tracer.h"
 #include "renderers/sdf_vk/brick_field_tables.h"
 #include "renderers/sdf_vk/sdf_gpu_tables.h"
-#include "renderers/vulkan/vulkan_context.h"
 #include "renderers/vulkan/vulkan_frame_runner.h"
+#include "renderers/vulkan/vulkan_renderer.h"
 
 namespace sdfbench {
 
 // sdf-bricks (issue 28): the thesis' scene hash and octree lists (as sdf-octree) over per-mesh
 // sampled brick fields (renderers/sdf/brick_field.h), sphere-traced in sdf_bricks.comp. Its
 // parameters are its own (backend_params.h): --voxels, --sdf-format, --brick-band, --brick-trace.
-struct BackendInfo;
-BackendInfo sdf_bricks_backend();  // its entry in renderers/backend_registry.h
-
-class SdfBricksRenderer : public Renderer {
+class SdfBricksRenderer : public VulkanRenderer {
  public:
   explicit SdfBricksRenderer(const BackendOptions& options);
   std::string name() const override { return "sdf-bricks"; }
-  std::string device_name() const override { return context_.info().name; }
-  std::string driver_name() const override { return context_.info().driver + " " + context_.info().driver_info; }
   void prepare(const Scene& scene) override;
   FrameResult render(const FrameRequest& request) override { return runner_.run(request); }
-  uint32_t validation_messages() const override { return context_.validation_messages(); }
   std::optional<StructureStats> structure_stats() const override { return stats_; }
 
  private:
@@ -36,7 +30,6 @@ class SdfBricksRenderer : public Renderer {
   sdf::SceneHashParams hash_params_;
   sdf::SphereTraceParams tracing_;
   std::optional<StructureStats> stats_;  // mesh grids + scene hash + brick fields
-  VulkanContext context_;
   SdfGpuTables tables_;
   bool sampler_ = false;  // --brick-fetch, resolved: the atlas as a filtered 3D image
   BrickFieldTables brick_tables_;
@@ -46,5 +39,9 @@ class SdfBricksRenderer : public Renderer {
 // The brick field parameters of `params` (--voxels, --sdf-format, --brick-band); throws Error
 // for values outside their ranges.
 sdf::BrickFieldParams brick_field_params(const BackendParams& params, uint64_t max_bytes);
+
+// Its entry in the backend registry (renderers/backend_registry.h).
+struct BackendInfo;
+BackendInfo sdf_bricks_backend();
 
 }  // namespace sdfbench

@@ -53,10 +53,10 @@ sdf::GlobalFieldParams global_field_params(const BackendParams& params, uint64_t
 }
 
 SdfGlobalRenderer::SdfGlobalRenderer(const BackendOptions& options)
-    : options_(options),
+    : VulkanRenderer(options),
+      options_(options),
       field_params_(global_field_params(options.params, sdf::max_structure_bytes(options.params))),
       tracing_(sdf::trace_params(options.params)),
-      context_(VulkanContext::Options{options.device, options.validation}),
       sampler_(use_sampler(options.params.text("brick_fetch"), context_.info())),
       runner_(context_,
               compute_tile_kernels(context_, "sdf_global.comp", brick_kernel_defines(options, sampler_) + options.kernel_defines),
@@ -114,7 +114,7 @@ BackendInfo sdf_global_backend() {
   info.counters = info.steps = info.stores_structure = true;
   info.partners = {{"sdf-octree", "one sampled scene-wide field against the thesis' structure"},
                    {"bvh", "one sampled scene-wide field against a BVH in a compute kernel"}};
-  info.create = [](const BackendOptions& options) { return std::make_unique<SdfGlobalRenderer>(options); };
+  info.create = factory<SdfGlobalRenderer>();
   return info;
 }
 

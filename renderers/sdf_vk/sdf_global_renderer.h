@@ -7,8 +7,8 @@
 #include "renderers/sdf/sphere_tracer.h"
 #include "renderers/sdf_vk/brick_field_tables.h"
 #include "renderers/sdf_vk/sdf_gpu_tables.h"
-#include "renderers/vulkan/vulkan_context.h"
 #include "renderers/vulkan/vulkan_frame_runner.h"
+#include "renderers/vulkan/vulkan_renderer.h"
 
 namespace sdfbench {
 
@@ -17,18 +17,12 @@ namespace sdfbench {
 // instances; near a surface the instances its brick lists are intersected exactly (the mesh
 // grids' triangle lists), or --hit field takes the field's own crossing. Its parameters
 // (backend_params.h): --global-voxel, --sdf-format, --brick-band, --brick-fetch.
-struct BackendInfo;
-BackendInfo sdf_global_backend();  // its entry in renderers/backend_registry.h
-
-class SdfGlobalRenderer : public Renderer {
+class SdfGlobalRenderer : public VulkanRenderer {
  public:
   explicit SdfGlobalRenderer(const BackendOptions& options);
   std::string name() const override { return "sdf-global"; }
-  std::string device_name() const override { return context_.info().name; }
-  std::string driver_name() const override { return context_.info().driver + " " + context_.info().driver_info; }
   void prepare(const Scene& scene) override;
   FrameResult render(const FrameRequest& request) override { return runner_.run(request); }
-  uint32_t validation_messages() const override { return context_.validation_messages(); }
   std::optional<StructureStats> structure_stats() const override { return stats_; }
 
  private:
@@ -36,7 +30,6 @@ class SdfGlobalRenderer : public Renderer {
   sdf::GlobalFieldParams field_params_;
   sdf::SphereTraceParams tracing_;
   std::optional<StructureStats> stats_;  // mesh grids + the global field and its lists
-  VulkanContext context_;
   bool sampler_ = false;  // --brick-fetch, resolved
   SdfGpuTables tables_;
   BrickFieldTables field_tables_;
@@ -47,5 +40,9 @@ class SdfGlobalRenderer : public Renderer {
 // The global field parameters of `params` (--global-voxel, --sdf-format, --brick-band); throws
 // Error for values outside their ranges.
 sdf::GlobalFieldParams global_field_params(const BackendParams& params, uint64_t max_bytes);
+
+// Its entry in the backend registry (renderers/backend_registry.h).
+struct BackendInfo;
+BackendInfo sdf_global_backend();
 
 }  // namespace sdfbench

@@ -10,9 +10,9 @@
 namespace sdfbench {
 
 SdfVkRenderer::SdfVkRenderer(std::string name, const BackendOptions& options)
-    : name_(std::move(name)),
+    : VulkanRenderer(options),
+      name_(std::move(name)),
       options_(options),
-      context_(VulkanContext::Options{options.device, options.validation}),
       tracing_(sdf::trace_params(options.params)),
       hash_params_(sdf::scene_hash_params(options.params)),
       runner_(context_, compute_tile_kernels(context_, "sdf_trace.comp",

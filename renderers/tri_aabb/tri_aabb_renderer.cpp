@@ -5,7 +5,7 @@
 namespace sdfbench {
 
 TriAabbRenderer::TriAabbRenderer(const BackendOptions& options)
-    : context_(VulkanContext::Options{options.device, options.validation}),
+    : VulkanRenderer(options),
       runner_(context_, compute_tile_kernels(context_, "tri_aabb.comp"), kTriAabbCounters, options.whitted_passes) {}
 
 void TriAabbRenderer::prepare(const Scene& scene) {
@@ -14,13 +14,9 @@ void TriAabbRenderer::prepare(const Scene& scene) {
 }
 
 BackendInfo tri_aabb_backend() {
-  return {
-      .name = "tri-aabb",
-      .kind = "triangles",
-      .summary = "the thesis' \"traditional\" tracer: a box per instance, every triangle tested (compute kernel)",
-      .counters = true,
-      .create = [](const BackendOptions& options) { return std::make_unique<TriAabbRenderer>(options); },
-  };
+  return {.name = "tri-aabb", .kind = "triangles",
+          .summary = "the thesis' \"traditional\" tracer: a box per instance, every triangle tested (compute kernel)",
+          .counters = true, .create = factory<TriAabbRenderer>()};
 }
 
 }  // namespace sdfbench

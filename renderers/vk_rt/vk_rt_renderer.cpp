@@ -42,12 +42,9 @@ void VkRtRenderer::prepare(const Scene& scene) {
 }
 
 BackendInfo vk_rt_backend() {
-  return {
-      .name = "vk-rt",
-      .kind = "driver-rt",
-      .summary = "the driver's own ray tracing (VK_KHR_ray_tracing_pipeline)",
-      .create = [](const BackendOptions& options) { return std::make_unique<VkRtRenderer>(options); },
-  };
+  return {.name = "vk-rt", .kind = "driver-rt",
+          .summary = "the driver's own ray tracing (VK_KHR_ray_tracing_pipeline)",
+          .create = factory<VkRtRenderer>()};
 }
 
 }  // namespace sdfbench

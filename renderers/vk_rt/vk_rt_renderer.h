@@ -13,9 +13,6 @@ namespace sdfbench {
 // The driver's ray tracing (VK_KHR_ray_tracing_pipeline): its acceleration structures, traversed
 // by hardware or by the driver's software path, shaded like every other backend. The work counters
 // are n/a: the traversal is the driver's.
-struct BackendInfo;
-BackendInfo vk_rt_backend();  // its entry in renderers/backend_registry.h
-
 class VkRtRenderer : public Renderer {
  public:
   // Throws Error "vk-rt: device 'X' lacks ..." on a device without ray-tracing pipelines.
@@ -37,5 +34,9 @@ class VkRtRenderer : public Renderer {
   std::unique_ptr<VulkanFrameRunner> runner_;
   std::optional<StructureStats> stats_;
 };
+
+// Its entry in the backend registry (renderers/backend_registry.h).
+struct BackendInfo;
+BackendInfo vk_rt_backend();
 
 }  // namespace sdfbench

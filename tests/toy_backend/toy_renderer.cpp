@@ -89,7 +89,7 @@ BackendInfo toy_backend() {
   info.params = {{"toy_order", ParamKind::Choice, "forward",
                   "the order the toy tests instances in (the image is the same either way)", "toy", {"forward", "reverse"}}};
   info.in_table = false;
-  info.create = [](const BackendOptions& options) { return std::make_unique<ToyRenderer>(options); };
+  info.create = factory<ToyRenderer>();
   return info;
 }
 

@@ -77,32 +77,20 @@ std::vector<std::string> summary(const SdfCacheContents& c) {
   return lines;
 }
 
-std::string differs(const SceneSdf& held, const StructureRequest& request) {
-  const BrickFieldParams& wanted = std::get<BrickFieldParams>(request);
-  if (same(*held.brick_params, wanted)) return "";
-  return "built with brick fields " + describe(*held.brick_params) + ", requested " + describe(wanted);
-}
-
 }  // namespace
 
 const SectionCodec& brick_field_codec() {
   static const SectionCodec codec{
-      .kind = 3,
-      .name = "brick fields",
-      .version = 1,
-      .sections = {{"brick params", sizeof(ParamsRecord), false},
-                   {"brick header", sizeof(BrickHeader), true},
-                   {"brick indirection", 4, true},
-                   {"brick atlas", 1, true},
-                   {"brick coarse level", 4, true}},
-      .optional = true,
-      .the_name = "brick fields",
-      .held = [](const SceneSdf& sdf) { return sdf.brick_params.has_value(); },
-      .encode = encode,
-      .decode = decode,
+      .kind = 3, .name = "brick fields", .version = 1,
+      .sections = {{"brick params", sizeof(ParamsRecord), false}, {"brick header", sizeof(BrickHeader), true},
+                   {"brick indirection", 4, true}, {"brick atlas", 1, true}, {"brick coarse level", 4, true}},
+      .optional = true, .the_name = "brick fields",
+      .held = [](const SceneSdf& sdf) { return sdf.brick_params.has_value(); }, .encode = encode, .decode = decode,
       .summary = summary,
       .serves = [](const StructureRequest& request) { return std::holds_alternative<BrickFieldParams>(request); },
-      .differs = differs,
+      .differs = [](const SceneSdf& held, const StructureRequest& request) {
+        return field_differs(held.brick_params, request, "brick fields");
+      },
   };
   return codec;
 }

@@ -100,34 +100,21 @@ std::vector<std::string> summary(const SdfCacheContents& c) {
   return {"global field " + describe(*c.sdf.global_params), line};
 }
 
-std::string differs(const SceneSdf& held, const StructureRequest& request) {
-  const GlobalFieldParams& wanted = std::get<GlobalFieldParams>(request);
-  if (same(*held.global_params, wanted)) return "";
-  return "built with a global field " + describe(*held.global_params) + ", requested " + describe(wanted);
-}
-
 }  // namespace
 
 const SectionCodec& global_field_codec() {
   static const SectionCodec codec{
-      .kind = 4,
-      .name = "global field",
-      .version = 1,
-      .sections = {{"global params", sizeof(ParamsRecord), false},
-                   {"global header", sizeof(GlobalHeader), false},
-                   {"global indirection", 4, false},
-                   {"global atlas", 1, false},
-                   {"global coarse level", 4, false},
-                   {"global list begin", 4, false},
-                   {"global list instances", 4, false}},
-      .optional = true,
-      .the_name = "the global field",
-      .held = [](const SceneSdf& sdf) { return sdf.global_params.has_value(); },
-      .encode = encode,
-      .decode = decode,
+      .kind = 4, .name = "global field", .version = 1,
+      .sections = {{"global params", sizeof(ParamsRecord), false}, {"global header", sizeof(GlobalHeader), false},
+                   {"global indirection", 4, false}, {"global atlas", 1, false}, {"global coarse level", 4, false},
+                   {"global list begin", 4, false}, {"global list instances", 4, false}},
+      .optional = true, .the_name = "the global field",
+      .held = [](const SceneSdf& sdf) { return sdf.global_params.has_value(); }, .encode = encode, .decode = decode,
       .summary = summary,
       .serves = [](const StructureRequest& request) { return std::holds_alternative<GlobalFieldParams>(request); },
-      .differs = differs,
+      .differs = [](const SceneSdf& held, const StructureRequest& request) {
+        return field_differs(held.global_params, request, "a global field");
+      },
   };
   return codec;
 }

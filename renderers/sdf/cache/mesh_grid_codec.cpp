@@ -118,24 +118,11 @@ std::vector<std::string> summary(const SdfCacheContents& c) {
 
 const SectionCodec& mesh_grid_codec() {
   static const SectionCodec codec{
-      .kind = 1,
-      .name = "mesh grids",
-      .version = 1,
-      .sections = {{"mesh grid params", sizeof(ParamsRecord), false},
-                   {"grid header", sizeof(GridHeader), true},
-                   {"cell_begin", 4, true},
-                   {"cell_triangles", 4, true},
-                   {"face normals", 12, true},
-                   {"edge normals", 12, true},
-                   {"vertex normals", 12, true}},
-      .optional = false,
-      .the_name = "the mesh grids",
-      .held = [](const SceneSdf&) { return true; },
-      .encode = encode,
-      .decode = decode,
-      .summary = summary,
-      .serves = nullptr,
-      .differs = nullptr,
+      .kind = 1, .name = "mesh grids", .version = 1,
+      .sections = {{"mesh grid params", sizeof(ParamsRecord), false}, {"grid header", sizeof(GridHeader), true},
+                   {"cell_begin", 4, true}, {"cell_triangles", 4, true}, {"face normals", 12, true},
+                   {"edge normals", 12, true}, {"vertex normals", 12, true}},
+      .the_name = "the mesh grids", .encode = encode, .decode = decode, .summary = summary,
   };
   return codec;
 }

@@ -105,22 +105,10 @@ std::vector<std::string> summary(const SdfCacheContents& c) {
 
 const SectionCodec& scene_hash_codec() {
   static const SectionCodec codec{
-      .kind = 2,
-      .name = "scene hash",
-      .version = 1,
-      .sections = {{"hash params", sizeof(ParamsRecord), false},
-                   {"hash header", sizeof(HashHeader), false},
-                   {"cell_root", 4, false},
-                   {"octree nodes", sizeof(OctreeNode), false},
-                   {"instance lists", 4, false}},
-      .optional = false,
-      .the_name = "the scene hash",
-      .held = [](const SceneSdf&) { return true; },
-      .encode = encode,
-      .decode = decode,
-      .summary = summary,
-      .serves = nullptr,
-      .differs = nullptr,
+      .kind = 2, .name = "scene hash", .version = 1,
+      .sections = {{"hash params", sizeof(ParamsRecord), false}, {"hash header", sizeof(HashHeader), false},
+                   {"cell_root", 4, false}, {"octree nodes", sizeof(OctreeNode), false}, {"instance lists", 4, false}},
+      .the_name = "the scene hash", .encode = encode, .decode = decode, .summary = summary,
   };
   return codec;
 }

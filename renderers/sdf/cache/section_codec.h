@@ -34,10 +34,11 @@ struct SectionCodec {
   std::vector<SectionSpec> sections;  // the first holds the parameters it was built with
   // Optional structures are built when a StructureRequest asks for them (and added to a cache
   // that lacks them); the others (mesh grids, scene hash) are in every cache.
-  bool optional;
-  const char* the_name;  // "the global field", for "added the global field"
+  bool optional = false;
+  const char* the_name = "";  // "the global field", for "added the global field"
 
-  bool (*held)(const SceneSdf& sdf);  // whether there is one to write
+  bool (*held)(const SceneSdf& sdf) = nullptr;  // whether there is one to write (null: always)
+  bool holds(const SceneSdf& sdf) const { return !held || held(sdf); }
   void (*encode)(const SdfCacheContents& contents, SectionWriter& out);
   // Fills its part of `contents` from its sections, all checked; throws Error otherwise.
   void (*decode)(const SectionReader& in, SdfCacheContents& contents);
@@ -45,8 +46,8 @@ struct SectionCodec {
   // Optional structures only: whether `request` asks for this structure, and what makes the held
   // one stale for it ("built with brick fields --voxels 16 ..., requested --voxels 32 ...",
   // empty when it serves the request).
-  bool (*serves)(const StructureRequest& request);
-  std::string (*differs)(const SceneSdf& held, const StructureRequest& request);
+  bool (*serves)(const StructureRequest& request) = nullptr;
+  std::string (*differs)(const SceneSdf& held, const StructureRequest& request) = nullptr;
 };
 
 // Every codec, in the order their sections are written and decoded (a codec may read what an
