@@ -1,6 +1,8 @@
 // `sdfbench backends`: the registry (renderers/backend_registry.h) as text or JSON, so that
 // scripts take their lists of backends and parameters from it rather than from copies.
 #include <iostream>
+#include <memory>
+#include <string>
 
 #include <nlohmann/json.hpp>
 

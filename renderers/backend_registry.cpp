@@ -1,7 +1,10 @@
 #include "renderers/backend_registry.h"
 
 #include <algorithm>
-#include <set>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "renderers/bvh/bvh_renderer.h"
 #include "renderers/embree/embree_renderer.h"

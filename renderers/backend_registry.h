@@ -7,6 +7,7 @@
 // program registers one at run time with register_backend() before it builds its commands
 // (docs/adding-a-backend.md).
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>

@@ -1,10 +1,9 @@
 #include "renderers/bvh/bvh_renderer.h"
 
-#include "renderers/backend_registry.h"
-
 #include <algorithm>
 #include <chrono>
 
+#include "renderers/backend_registry.h"
 #include "renderers/bvh/bvh_builder.h"
 #include "util/error.h"
 

@@ -1,9 +1,8 @@
 #include "renderers/embree/embree_renderer.h"
 
 #include "renderers/backend_registry.h"
-
-#include "util/cpu_info.h"
 #include "renderers/cpu_frame.h"
+#include "util/cpu_info.h"
 #include "util/error.h"
 
 namespace sdfbench {

@@ -1,9 +1,8 @@
 #include "renderers/vk_rt/vk_rt_renderer.h"
 
-#include "renderers/backend_registry.h"
-
 #include <chrono>
 
+#include "renderers/backend_registry.h"
 #include "renderers/vk_rt/rt_pipeline.h"
 #include "util/error.h"
 
