@@ -160,7 +160,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, GlobalFieldVsBruteForce,
                          case_name);
 
 TEST(GlobalField, ParametersAndLimitsAreErrorsNamingTheFlag) {
-  const ParamSpec& voxel = catalogue_spec("global_voxel");
+  const ParamSpec voxel = catalogue_spec("global_voxel");  // a copy: GCC 14 takes the reference for a dangling one
   EXPECT_THROW(parse_param_value(voxel, "0"), Error);
   EXPECT_THROW(parse_param_value(voxel, "-1"), Error);
   EXPECT_THROW(parse_param_value(voxel, "0.5x"), Error);
