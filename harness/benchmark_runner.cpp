@@ -11,6 +11,7 @@
 #include "harness/system_info.h"
 #include "harness/timing_stats.h"
 #include "renderers/embree/embree_api.h"
+#include "scenes/overlap_layout.h"
 #include "scenes/scene_source.h"
 #include "util/cpu_info.h"
 #include "util/machine_load.h"
@@ -131,6 +132,7 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   Measurement m = configuration_fields(config, run_index, settings_);
   std::tie(m.mesh, m.triangles) = mesh_summary(s);
   m.objects = s.instances.size();
+  if (!s.instances.empty()) m.overlap = measured_overlap(s);
 
   std::unique_ptr<Renderer> renderer = create_renderer(config.backend, config.options);
   const Clock::time_point prepare_start = Clock::now();

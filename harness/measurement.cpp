@@ -48,7 +48,7 @@ const std::vector<std::string>& key_columns() {
 
 const std::vector<std::string>& measurement_columns() {
   static const std::vector<std::string> columns = with_backend_params({
-      "run_index", "run_id", "table", "scene", "mesh", "triangles", "objects", "backend", "mode", "max_depth", "width", "height",
+      "run_index", "run_id", "table", "scene", "mesh", "triangles", "objects", "overlap", "backend", "mode", "max_depth", "width", "height",
       "params", "cache", "on_bad_cache", "requested_frames", "warmup", "budget_s", "reference",
       "requested_device", "whitted_passes", "validate", "frames", "clock", "ms_median", "ms_min", "ms_max",
       "ms_wall_median", "fps", "mrays_per_s", "rays_per_pixel", "steps_per_ray", "instance_evals_per_ray",
@@ -58,7 +58,7 @@ const std::vector<std::string>& measurement_columns() {
 }
 
 std::vector<std::string> to_csv_fields(const Measurement& m) {
-  std::vector<std::string> fields = {std::to_string(m.run_index), m.run_id, m.table, m.scene, m.mesh, std::to_string(m.triangles), std::to_string(m.objects),
+  std::vector<std::string> fields = {std::to_string(m.run_index), m.run_id, m.table, m.scene, m.mesh, std::to_string(m.triangles), std::to_string(m.objects), number(m.overlap),
           m.backend, m.mode, std::to_string(m.max_depth), std::to_string(m.width), std::to_string(m.height),
           m.cache, m.on_bad_cache, std::to_string(m.requested_frames), std::to_string(m.warmup), number(m.budget_s),
           m.reference, m.requested_device, m.whitted_passes, m.validate ? "1" : "0", std::to_string(m.frames), m.clock, number(m.ms_median), number(m.ms_min), number(m.ms_max),

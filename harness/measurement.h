@@ -17,6 +17,9 @@ struct Measurement {
   std::string table;     // thesis table this row reproduces ("6.1", "6.2", "6.3"), "sweep", or empty
   std::string scene, mesh;
   size_t triangles = 0, objects = 0;
+  // the mean number of instance boxes over a point of their union (scenes/overlap_layout.h,
+  // measured_overlap): about 1 for the thesis layout, k for an overlap:<mesh>:<count>:<k> scene
+  std::optional<double> overlap;
   std::string backend, mode;
   unsigned max_depth = 0;
   unsigned width = 0, height = 0;

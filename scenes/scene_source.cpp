@@ -1,5 +1,6 @@
 #include "scenes/scene_source.h"
 
+#include "scenes/overlap_layout.h"
 #include "scenes/scene_loader.h"
 #include "scenes/thesis_layout.h"
 
@@ -7,6 +8,7 @@ namespace sdfbench {
 
 Scene load_scene(const std::string& spec) {
   if (spec.rfind("thesis:", 0) == 0) return make_thesis_scene(parse_thesis_spec(spec));
+  if (spec.rfind("overlap:", 0) == 0) return make_overlap_scene(parse_overlap_spec(spec));
   return load_scene_file(spec);
 }
 

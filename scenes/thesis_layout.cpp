@@ -19,9 +19,6 @@ namespace {
 // Thesis chapter 6: objects "condensed in a space of 140 x 100 x 140".
 constexpr glm::vec3 kRegionMin{-70.0f, 0.0f, -70.0f};
 constexpr glm::vec3 kRegionMax{70.0f, 100.0f, 70.0f};
-constexpr float kBaseRadius = 4.0f;        // bounding-sphere radius of an object at scale factor 1
-constexpr float kMinScale = 0.75f, kMaxScale = 1.25f;
-constexpr uint32_t kMaxCount = 100000;
 constexpr int kAttemptsPerObject = 10000;
 
 template <class T>
@@ -36,8 +33,14 @@ T parse_number(const std::string& text, const std::string& spec, const char* wha
   return value;
 }
 
-void add_materials(Scene& scene) {
-  // Diffuse, reflective and refractive variants of six albedos; instances cycle through them.
+}  // namespace
+
+uint64_t parse_spec_integer(const std::string& text, const std::string& spec, const char* what) {
+  return parse_number<uint64_t>(text, spec, what);
+}
+
+void add_thesis_materials(Scene& scene) {
+  // Instances cycle through them.
   const glm::vec3 palette[6] = {{0.80f, 0.30f, 0.25f}, {0.30f, 0.65f, 0.35f}, {0.30f, 0.45f, 0.85f},
                                 {0.85f, 0.75f, 0.30f}, {0.70f, 0.40f, 0.80f}, {0.85f, 0.85f, 0.85f}};
   for (int kind = 0; kind < 3; ++kind) {
@@ -58,7 +61,15 @@ void add_materials(Scene& scene) {
   scene.materials.push_back(floor);
 }
 
-}  // namespace
+void add_thesis_stage(Scene& scene, float scale) {
+  scene.floor = {.enabled = true, .height = 0.0f, .material = static_cast<uint32_t>(scene.materials.size() - 1)};
+  scene.camera = {.position = glm::vec3(0.0f, 75.0f, 150.0f) * scale, .look_at = glm::vec3(0.0f, 40.0f, 0.0f) * scale,
+                  .up = {0.0f, 1.0f, 0.0f}, .fov_y_degrees = 55.0f};
+  Light sun;
+  sun.direction = glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f));
+  sun.color = glm::vec3(1.0f);
+  scene.lights.push_back(sun);
+}
 
 ThesisLayoutSpec parse_thesis_spec(const std::string& spec) {
   std::vector<std::string> parts;
@@ -83,8 +94,8 @@ ThesisLayoutSpec parse_thesis_spec(const std::string& spec) {
   if (builtin_mesh_path(result.mesh).empty())
     throw Error("scene '" + spec + "': unknown mesh '" + result.mesh + "' (expected bunny, teapot, monkey or sphere)");
   result.count = parse_number<uint32_t>(parts[2], spec, "count");
-  if (result.count < 1 || result.count > kMaxCount)
-    throw Error("scene '" + spec + "': count must be between 1 and " + std::to_string(kMaxCount));
+  if (result.count < 1 || result.count > kMaxThesisCount)
+    throw Error("scene '" + spec + "': count must be between 1 and " + std::to_string(kMaxThesisCount));
   if (parts.size() == 4) result.seed = parse_number<uint64_t>(parts[3], spec, "seed");
   return result;
 }
@@ -95,17 +106,17 @@ Scene make_thesis_scene(const ThesisLayoutSpec& spec) {
   if (spec.triangles) mesh_spec.append("@").append(std::to_string(spec.triangles));
   scene.name = "thesis:" + mesh_spec + ":" + std::to_string(spec.count) + ":" + std::to_string(spec.seed);
   scene.meshes.push_back(spec.triangles ? load_sized_mesh(spec.mesh, spec.triangles) : load_obj(builtin_mesh_path(spec.mesh), spec.mesh));
-  add_materials(scene);
+  add_thesis_materials(scene);
   const Mesh& mesh = scene.meshes[0];
   const float mesh_radius = 0.5f * glm::length(mesh.bounds.extent());
   const glm::vec3 mesh_center = mesh.bounds.center();
 
   // Beyond 1000 objects the radius shrinks so the packing density stays that of 1000.
-  const float base_radius = kBaseRadius * std::min(1.0f, std::cbrt(1000.0f / static_cast<float>(spec.count)));
+  const float base_radius = kThesisBaseRadius * std::min(1.0f, std::cbrt(1000.0f / static_cast<float>(spec.count)));
   Pcg32 rng(spec.seed);
   std::vector<glm::vec4> placed;  // xyz centre, w radius
   for (uint32_t i = 0; i < spec.count; ++i) {
-    const float radius = base_radius * rng.uniform(kMinScale, kMaxScale);
+    const float radius = base_radius * rng.uniform(kThesisMinScale, kThesisMaxScale);
     const float yaw = rng.uniform(0.0f, 360.0f);
     glm::vec3 center;
     int attempt = 0;
@@ -133,13 +144,7 @@ Scene make_thesis_scene(const ThesisLayoutSpec& spec) {
     scene.instances.push_back(instance);
   }
 
-  scene.floor = {.enabled = true, .height = 0.0f, .material = static_cast<uint32_t>(scene.materials.size() - 1)};
-  scene.camera = {.position = {0.0f, 75.0f, 150.0f}, .look_at = {0.0f, 40.0f, 0.0f}, .up = {0.0f, 1.0f, 0.0f},
-                  .fov_y_degrees = 55.0f};
-  Light sun;
-  sun.direction = glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f));
-  sun.color = glm::vec3(1.0f);
-  scene.lights.push_back(sun);
+  add_thesis_stage(scene, 1.0f);
   return scene;
 }
 
