@@ -86,6 +86,7 @@ const Scene& BenchmarkRunner::scene(const std::string& spec) {
     references_.clear();
     scene_ = std::make_unique<Scene>(load_scene(spec));
     scene_spec_ = spec;
+    scene_overlap_ = scene_->instances.empty() ? std::nullopt : std::optional<double>(measured_overlap(*scene_));
   }
   return *scene_;
 }
@@ -132,7 +133,7 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   Measurement m = configuration_fields(config, run_index, settings_);
   std::tie(m.mesh, m.triangles) = mesh_summary(s);
   m.objects = s.instances.size();
-  if (!s.instances.empty()) m.overlap = measured_overlap(s);
+  m.overlap = scene_overlap_;
 
   std::unique_ptr<Renderer> renderer = create_renderer(config.backend, config.options);
   const Clock::time_point prepare_start = Clock::now();

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "harness/cli_common.h"
@@ -63,6 +64,7 @@ class BenchmarkRunner {
   BenchSettings settings_;
   std::string scene_spec_;  // one scene at a time: a 1000-instance scene is worth keeping, not ten
   std::unique_ptr<Scene> scene_;
+  std::optional<double> scene_overlap_;  // measured_overlap of scene_, once per scene (every row records it)
   std::map<std::string, FrameImages> references_;  // by scene + mode, for the current scene
   void keep_images(const BenchConfig& config, size_t run_index, const FrameImages& frame, Measurement& m);
 

@@ -1,7 +1,5 @@
 #include "tests/toy_backend/toy_renderer.h"
 
-#include <limits>
-
 #include "renderers/cpu_frame.h"
 #include "renderers/frame_params.h"
 #include "util/cpu_info.h"
@@ -9,25 +7,6 @@
 
 namespace sdfbench::toy {
 namespace {
-
-// Möller-Trumbore; t in the ray's own units (the object-space ray keeps the world's t under a
-// similarity transform).
-bool intersect(const glm::vec3& o, const glm::vec3& d, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, float tmax,
-               float& t, glm::vec2& uv) {
-  const glm::vec3 e1 = b - a, e2 = c - a, p = glm::cross(d, e2);
-  const float det = glm::dot(e1, p);
-  if (det == 0.0f) return false;
-  const float inv = 1.0f / det;
-  const glm::vec3 s = o - a;
-  const float u = glm::dot(s, p) * inv;
-  if (u < 0.0f || u > 1.0f) return false;
-  const glm::vec3 q = glm::cross(s, e1);
-  const float v = glm::dot(d, q) * inv;
-  if (v < 0.0f || u + v > 1.0f) return false;
-  t = glm::dot(e2, q) * inv;
-  uv = {u, v};
-  return t > 0.0f && t < tmax;
-}
 
 class ToyRenderer : public Renderer {
  public:
@@ -53,9 +32,11 @@ class ToyRenderer : public Renderer {
       const glm::vec3 o = glm::vec3(to_object * glm::vec4(ray.origin, 1.0f)), d = glm::vec3(to_object * glm::vec4(ray.dir, 0.0f));
       for (size_t f = 0; f < mesh.triangles.size(); ++f) {
         const glm::uvec3 tri = mesh.triangles[f];
-        float t = 0;
+        float t = 0;  // in the ray's own units: the object-space ray keeps the world's t (a similarity)
         glm::vec2 uv;
-        if (!intersect(o, d, mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z], tmax, t, uv)) continue;
+        if (!shading::ray_triangle(o, d, mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z], t, uv) ||
+            !(t > 0.0f && t < tmax))
+          continue;
         tmax = t;
         found = true;
         const glm::vec3 normal =
