@@ -204,6 +204,7 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   m.triangle_tests_per_ray = per_ray(COUNTER_TRIANGLE_TESTS);
   m.out_of_steps_per_ray = per_ray(COUNTER_OUT_OF_STEPS);
   m.field_samples_per_ray = per_ray(COUNTER_FIELD_SAMPLES);
+  m.cell_sets_per_ray = per_ray(COUNTER_CELL_SETS);
   if (config.backend == settings_.reference) {
     m.agreement = "reference";
   } else {

@@ -192,6 +192,7 @@ void sweep_table(std::ostringstream& out, const std::vector<Row>& rows) {
   const std::vector<Figure> optional = {
       {"steps_per_ray", "steps/ray", 1, 1},           {"instance_evals_per_ray", "instance evals/ray", 1, 1},
       {"triangle_evals_per_ray", "triangle evals/ray", 1, 1}, {"field_samples_per_ray", "field samples/ray", 1, 1},
+      {"cell_sets_per_ray", "cell sets/ray", 1, 1},
       {"aabb_tests_per_ray", "AABB tests/ray", 1, 1}, {"triangle_tests_per_ray", "triangle tests/ray", 1, 1},
       {"hit_agreement", "hit %", 2, 1},               {"id_agreement", "id %", 2, 1},
       {"depth_p99_voxels", "depth p99 (voxels)", 3, 1}, {"psnr", "PSNR dB", 1, 1}};

@@ -52,7 +52,7 @@ const std::vector<std::string>& measurement_columns() {
       "params", "cache", "on_bad_cache", "requested_frames", "warmup", "budget_s", "reference",
       "requested_device", "whitted_passes", "validate", "frames", "clock", "ms_median", "ms_min", "ms_max",
       "ms_wall_median", "fps", "mrays_per_s", "rays_per_pixel", "steps_per_ray", "instance_evals_per_ray",
-      "triangle_evals_per_ray", "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray", "field_samples_per_ray", "prepare_ms", "build_ms", "structure_bytes", "backend_resolved", "check_size", "hit_agreement",
+      "triangle_evals_per_ray", "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray", "field_samples_per_ray", "cell_sets_per_ray", "prepare_ms", "build_ms", "structure_bytes", "backend_resolved", "check_size", "hit_agreement",
       "id_agreement", "psnr", "depth_p99", "depth_p99_voxels", "agreement", "budget_cut", "load_avg", "cpu_steal_pct", "cpu_other_pct", "busy", "frame_image", "reference_image", "diff_image", "device", "driver", "embree", "cpu", "threads", "commit"});
   return columns;
 }
@@ -64,7 +64,7 @@ std::vector<std::string> to_csv_fields(const Measurement& m) {
           m.reference, m.requested_device, m.whitted_passes, m.validate ? "1" : "0", std::to_string(m.frames), m.clock, number(m.ms_median), number(m.ms_min), number(m.ms_max),
           number(m.ms_wall_median), number(m.fps), number(m.mrays_per_s), number(m.rays_per_pixel),
           number(m.steps_per_ray), number(m.instance_evals_per_ray), number(m.triangle_evals_per_ray),
-          number(m.aabb_tests_per_ray), number(m.triangle_tests_per_ray), number(m.out_of_steps_per_ray), number(m.field_samples_per_ray),
+          number(m.aabb_tests_per_ray), number(m.triangle_tests_per_ray), number(m.out_of_steps_per_ray), number(m.field_samples_per_ray), number(m.cell_sets_per_ray),
           number(m.prepare_ms), number(m.build_ms), number(m.structure_bytes), m.backend_resolved, m.check_size, number(m.hit_agreement),
           number(m.id_agreement), number(m.psnr), number(m.depth_p99), number(m.depth_p99_voxels), m.agreement, m.budget_cut ? "1" : "0",
           number(m.load_avg), number(m.cpu_steal_pct), number(m.cpu_other_pct), m.busy ? (*m.busy ? "1" : "0") : "", m.frame_image, m.reference_image, m.diff_image, m.device, m.driver, m.embree,

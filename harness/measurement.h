@@ -40,7 +40,7 @@ struct Measurement {
   double ms_median = 0, ms_min = 0, ms_max = 0, ms_wall_median = 0, fps = 0, mrays_per_s = 0, rays_per_pixel = 0;
   // work counters of the instrumented check frame, per ray; empty: the backend has no such counter
   std::optional<double> steps_per_ray, instance_evals_per_ray, triangle_evals_per_ray, aabb_tests_per_ray,
-      triangle_tests_per_ray, out_of_steps_per_ray, field_samples_per_ray;
+      triangle_tests_per_ray, out_of_steps_per_ray, field_samples_per_ray, cell_sets_per_ray;
   double prepare_ms = 0;                                 // renderer prepare(): structure build or cache load + upload
   std::optional<double> build_ms, structure_bytes;       // SDF structures
   std::string backend_resolved;  // what the backend chose for its "auto" parameters (StructureStats::resolved)

@@ -4,7 +4,7 @@ namespace sdfbench {
 
 const std::array<const char*, COUNTER_KINDS>& counter_names() {
   static const std::array<const char*, COUNTER_KINDS> names = {"steps", "instance_evals", "triangle_evals", "aabb_tests",
-                                                               "triangle_tests", "out_of_steps", "field_samples"};
+                                                               "triangle_tests", "out_of_steps", "field_samples", "cell_sets"};
   return names;
 }
 

@@ -14,7 +14,7 @@ namespace sdfbench {
 // sphere-tracing steps) or cannot see (Embree exposes no traversal counts) stays empty.
 using WorkCounters = std::array<std::optional<uint64_t>, COUNTER_KINDS>;
 
-// "steps", "instance_evals", "triangle_evals", "aabb_tests", "triangle_tests", "out_of_steps", "field_samples": the CSV's
+// "steps", "instance_evals", "triangle_evals", "aabb_tests", "triangle_tests", "out_of_steps", "field_samples", "cell_sets": the CSV's
 // <name>_per_ray columns and what `render --counters` prints.
 const std::array<const char*, COUNTER_KINDS>& counter_names();
 
@@ -28,6 +28,8 @@ inline constexpr uint32_t kSdfCounters = counter_bit(COUNTER_STEPS) | counter_bi
 inline constexpr uint32_t kBrickCounters = counter_bit(COUNTER_STEPS) | counter_bit(COUNTER_INSTANCE_EVALS) |
                                            counter_bit(COUNTER_FIELD_SAMPLES) | counter_bit(COUNTER_AABB_TESTS) |
                                            counter_bit(COUNTER_TRIANGLE_TESTS) | counter_bit(COUNTER_OUT_OF_STEPS);
+// sdf-global: also the reference cells whose triangle set was tested (--exact-lists triangles).
+inline constexpr uint32_t kGlobalCounters = kBrickCounters | counter_bit(COUNTER_CELL_SETS);
 inline constexpr uint32_t kTriAabbCounters = counter_bit(COUNTER_AABB_TESTS) | counter_bit(COUNTER_TRIANGLE_TESTS);
 inline constexpr uint32_t kBvhCounters = kTriAabbCounters;  // node child boxes tested, triangles tested
 

@@ -15,6 +15,7 @@
 #include "harness/image_agreement.h"
 #include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
+#include "renderers/sdf/cell_triangle_refs.h"
 #include "renderers/sdf/global_field.h"
 #include "renderers/sdf/scene_hash.h"
 #include "renderers/sdf_vk/brick_gpu_arrays.h"
@@ -150,6 +151,55 @@ TEST_P(GlobalFieldVsBruteForce, BricksListEveryInstanceWhoseSurfaceTheyHold) {
     const auto begin = global.list_instances.begin() + global.list_begin[slot];
     const auto end = global.list_instances.begin() + global.list_begin[slot + 1];
     ASSERT_NE(std::find(begin, end, i), end) << "instance " << i << " not listed by the brick holding its surface";
+  }
+}
+
+// --exact-lists triangles: every triangle is in the set of each reference cell that a point of it
+// lies in (points drawn on random triangles of random instances), at two cell sizes; the bricks
+// no triangle crosses have no table.
+TEST_P(GlobalFieldVsBruteForce, ReferenceCellsListEveryTriangleCrossingThem) {
+  const sdf::BrickField& field = sdf_.global_field.field;
+  std::vector<uint32_t> mesh_first(1, 0);
+  for (const Mesh& mesh : scene_.meshes) mesh_first.push_back(mesh_first.back() + uint32_t(mesh.triangles.size()));
+  for (uint32_t split : {1u, 3u}) {
+    const sdf::CellTriangleRefs refs = sdf::build_cell_triangle_refs(scene_, field, split, uint64_t(1) << 31);
+    const float cell = field.voxel / float(split);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+    std::set<uint32_t> crossed_bricks;
+    for (int n = 0; n < 3000; ++n) {
+      const uint32_t i = rng() % scene_.instances.size();
+      const Instance& instance = scene_.instances[i];
+      const Mesh& mesh = scene_.meshes[instance.mesh];
+      const uint32_t t = rng() % mesh.triangles.size();
+      const glm::uvec3 tri = mesh.triangles[t];
+      float a = u01(rng), b = u01(rng);
+      if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
+      const glm::vec3 local = mesh.positions[tri.x] + a * (mesh.positions[tri.y] - mesh.positions[tri.x]) +
+                              b * (mesh.positions[tri.z] - mesh.positions[tri.x]);
+      const glm::vec3 p(instance.transform.object_to_world() * glm::vec4(local, 1.0f));
+      const glm::uvec3 g = glm::min(glm::uvec3(glm::max((p - field.origin) / cell, glm::vec3(0.0f))),
+                                    field.bricks * refs.cells_per_side - 1u);
+      const glm::uvec3 brick = g / refs.cells_per_side, l = g - brick * refs.cells_per_side;
+      const uint32_t slot = field.indirection[brick.x + size_t(field.bricks.x) * (brick.y + size_t(field.bricks.y) * brick.z)];
+      ASSERT_NE(slot, sdf::kEmptyBrick);
+      crossed_bricks.insert(slot);
+      ASSERT_NE(refs.brick_tables[slot], sdf::kNoCellTable) << "a brick holding a surface point has no cell table";
+      const uint32_t set = refs.cells[refs.brick_tables[slot] + l.x + refs.cells_per_side * (l.y + refs.cells_per_side * l.z)];
+      bool listed = false;
+      uint32_t listed_instance = sdf::kNoCellTable;
+      for (uint32_t k = set + 1; k <= set + refs.sets[set]; ++k) {
+        const uint32_t w = refs.sets[k];
+        if (w & sdf::kInstanceWord) listed_instance = w & ~sdf::kInstanceWord;
+        else listed = listed || (listed_instance == i && w == mesh_first[instance.mesh] + t);
+      }
+      ASSERT_TRUE(listed) << "split " << split << ": instance " << i << " triangle " << t << " not in the set of a cell it crosses";
+    }
+    size_t tables = 0;
+    for (uint32_t table : refs.brick_tables) tables += table != sdf::kNoCellTable;
+    EXPECT_LT(tables, refs.brick_tables.size()) << "every stored brick has a table: the band's bricks are not told apart";
+    EXPECT_GE(tables, crossed_bricks.size());
+    EXPECT_GT(refs.references, 0u);
   }
 }
 

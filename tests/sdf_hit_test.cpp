@@ -2,9 +2,12 @@
 // very close to a surface, a grazing view along a large flat panel, scales 0.001 and 1000 in one
 // scene, overlapping instances, a camera inside a box whose walls lie on hash-cell faces, and
 // thesis:bunny:1000 in whitted mode. Every SDF backend (sdf-bricks with either --brick-trace, and
-// sdf-global, whose field holds the camera in most of these scenes),
+// sdf-global, whose field holds the camera in most of these scenes, with either --exact-lists),
 // primary and shadow, at the default `compare` thresholds; sdf-cpu is the reference of the kernels.
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -18,14 +21,19 @@
 namespace sdfbench {
 namespace {
 
-// Each SDF backend; sdf-bricks (exact hits) with each way of tracing the lists.
+// Each SDF backend; sdf-bricks (exact hits) with each way of tracing the lists, sdf-global with
+// each kind of exact-hit candidates.
 struct SdfVariant {
   const char* backend;
-  const char* brick_trace;  // sdf-bricks' --brick-trace, else null
+  std::vector<std::pair<const char*, const char*>> params;  // beyond the defaults
 };
-constexpr SdfVariant kSdfBackends[] = {
-    {"sdf-cpu", nullptr},           {"sdf-hash", nullptr},     {"sdf-octree", nullptr},
-    {"sdf-bricks", "instance"},     {"sdf-bricks", "min"},     {"sdf-global", nullptr}};
+const SdfVariant kSdfBackends[] = {{"sdf-cpu", {}},
+                                   {"sdf-hash", {}},
+                                   {"sdf-octree", {}},
+                                   {"sdf-bricks", {{"brick_trace", "instance"}}},
+                                   {"sdf-bricks", {{"brick_trace", "min"}}},
+                                   {"sdf-global", {}},
+                                   {"sdf-global", {{"exact_lists", "triangles"}}}};
 constexpr RenderMode kModes[] = {RenderMode::Primary, RenderMode::Shadow};
 constexpr uint32_t kGrazingSteps = 48;
 
@@ -101,8 +109,11 @@ void expect_agreement(const Scene& scene, const BackendOptions& options = {}, ui
   EXPECT_GE(instance_pixels, reference.instance_id.size() / 20) << scene.name;
   for (const SdfVariant& variant : kSdfBackends) {
     BackendOptions variant_options = options;
-    if (variant.brick_trace) variant_options.params.set("brick_trace", variant.brick_trace);
-    const std::string backend = variant.brick_trace ? std::string(variant.backend) + " " + variant.brick_trace : variant.backend;
+    std::string backend = variant.backend;
+    for (const auto& [name, value] : variant.params) {
+      variant_options.params.set(name, value);
+      backend += std::string(" ") + name + "=" + value;
+    }
     auto renderer = create_renderer(variant.backend, variant_options);
     renderer->prepare(scene);
     for (RenderMode mode : kModes) {

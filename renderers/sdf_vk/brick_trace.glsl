@@ -8,8 +8,12 @@
 
 // Near a surface (a bound below BRICK_NEAR_VOXELS) the next BRICK_WINDOW_VOXELS of the ray go to
 // the exact test.
+#ifndef BRICK_NEAR_VOXELS
 #define BRICK_NEAR_VOXELS 1.0f
+#endif
+#ifndef BRICK_WINDOW_VOXELS
 #define BRICK_WINDOW_VOXELS 2.0f
+#endif
 // A window's exact test starts this far behind its point (never before the ray's start): a step
 // by a bound that is the exact distance (a flat mesh seen straight on) lands on the surface, and
 // rounding may put it a hair beyond.

@@ -49,6 +49,10 @@ float brick_exit(Ray ray, BrickFieldInfo f, uvec3 b) {
   return t1;
 }
 
+#ifdef GLOBAL_REF_SPLIT
+#include "global_cell_refs.glsl"
+#endif
+
 // The earliest exact crossing over [s0, s1] of the instances stored brick `slot` lists (every
 // instance whose surface comes within kListSlackVoxels of the brick); keeps it in `best`.
 bool exact_in_brick(Ray ray, uint slot, float s0, float s1, inout BrickHit best) {
@@ -148,6 +152,8 @@ bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
     t += max(v, face_slack(ray, t));
   }
   return false;
+#elif defined(GLOBAL_REF_SPLIT)
+  return trace_cells(ray, r, t, t1, t_start, best);
 #else
   ray_steps = 0u;
   while (t <= t1) {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "renderers/backend_registry.h"
+#include "renderers/sdf/cell_triangle_refs.h"
 #include "renderers/sdf/sdf_cache.h"
 #include "renderers/sdf/sdf_params.h"
 #include "renderers/sdf_vk/brick_gpu_arrays.h"
@@ -40,6 +41,31 @@ sdf::SceneHashParams one_cell_hash(const Scene& scene, uint64_t max_bytes) {
   return p;
 }
 
+// --exact-lists triangles as sdf_global.comp reads them (global_cell_refs.glsl): per stored brick
+// its cell table's start in the same buffer (or SDF_NONE), then the tables.
+std::vector<uint32_t> flatten_cells(const sdf::CellTriangleRefs& refs) {
+  const uint64_t offset = refs.brick_tables.size();
+  if (offset + refs.cells.size() >= std::numeric_limits<uint32_t>::max())
+    throw Error("the triangle references' cell tables are too long for the kernel's 32-bit indices; use a smaller --list-split");
+  std::vector<uint32_t> words;
+  words.reserve(offset + refs.cells.size());
+  for (uint32_t table : refs.brick_tables)
+    words.push_back(table == sdf::kNoCellTable ? sdf::kNoCellTable : static_cast<uint32_t>(offset + table));
+  words.insert(words.end(), refs.cells.begin(), refs.cells.end());
+  return words;
+}
+
+std::string kernel_defines(const BackendOptions& options, bool sampler) {
+  std::ostringstream defines;
+  defines << brick_kernel_defines(options, sampler);
+  // Where the march hands over to the exact test, and how far along the ray one test reaches.
+  defines << "#define BRICK_NEAR_VOXELS float(" << options.params.real("exact_near") << ")\n#define BRICK_WINDOW_VOXELS float("
+          << options.params.real("exact_window") << ")\n";
+  if (options.params.text("hit") == "exact" && options.params.text("exact_lists") == "triangles")
+    defines << "#define GLOBAL_REF_SPLIT " << options.params.integer("list_split") << "\n";
+  return defines.str() + options.kernel_defines;
+}
+
 }  // namespace
 
 sdf::GlobalFieldParams global_field_params(const BackendParams& params, uint64_t max_bytes) {
@@ -59,13 +85,15 @@ SdfGlobalRenderer::SdfGlobalRenderer(const BackendOptions& options)
       tracing_(sdf::trace_params(options.params)),
       sampler_(use_sampler(options.params.text("brick_fetch"), context_.info())),
       runner_(context_,
-              compute_tile_kernels(context_, "sdf_global.comp", brick_kernel_defines(options, sampler_) + options.kernel_defines),
-              kBrickCounters, options.whitted_passes) {}
+              compute_tile_kernels(context_, "sdf_global.comp", kernel_defines(options, sampler_)),
+              kGlobalCounters, options.whitted_passes) {}
 
 void SdfGlobalRenderer::prepare(const Scene& scene) {
   SdfGpuArrays arrays;
   BrickGpuArrays field;
-  std::vector<uint32_t> lists;
+  std::vector<uint32_t> lists, ref_cells, ref_sets;
+  const bool triangle_refs =
+      tracing_.hit == sdf::HitMode::exact && options_.params.text("exact_lists") == "triangles";
   {  // the CPU structures are freed once flattened
     const sdf::SceneSdf sdf =
         sdf::obtain_scene_sdf(scene, sdf::mesh_grid_params(options_.params), one_cell_hash(scene, field_params_.max_bytes),
@@ -77,6 +105,16 @@ void SdfGlobalRenderer::prepare(const Scene& scene) {
     // The resolved fetch path and voxel (--global-voxel auto is the scene's) go into the row.
     std::ostringstream resolved;
     resolved << "brick_fetch=" << (sampler_ ? "sampler" : "texel") << " voxel=" << sdf.global_field.field.voxel;
+    if (triangle_refs) {  // built with the field each time (not cached): their time is in the row
+      const sdf::CellTriangleRefs refs = sdf::build_cell_triangle_refs(
+          scene, sdf.global_field.field, static_cast<uint32_t>(options_.params.integer("list_split")), field_params_.max_bytes);
+      ms += refs.build_ms;
+      bytes += refs.bytes();
+      resolved << " references=" << refs.references << " set_words=" << refs.sets.size()
+               << " reference_mb=" << std::round(refs.bytes() / 1e5) / 10;
+      ref_cells = flatten_cells(refs);
+      ref_sets = refs.sets;
+    }
     stats_ = StructureStats{ms, bytes, {}, resolved.str()};
     stats_->instance_voxels.assign(scene.instances.size(), sdf.global_field.field.voxel);
     arrays = flatten_for_gpu(scene, sdf, tracing_);
@@ -94,6 +132,13 @@ void SdfGlobalRenderer::prepare(const Scene& scene) {
   std::vector<KernelBinding> bindings = tables_.bindings();
   field_tables_.add_bindings(bindings);
   bindings.push_back({22, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, &brick_lists_});
+  if (triangle_refs) {
+    const char* refs_hint = "a smaller --list-split, a larger --global-voxel or --exact-lists instances need less";
+    ref_cells_ = upload_table(context_, ref_cells, VK_FORMAT_R32_UINT, 4, false, "triangle reference cells", refs_hint);
+    ref_sets_ = upload_table(context_, ref_sets, VK_FORMAT_R32_UINT, 4, false, "triangle reference sets", refs_hint);
+    bindings.push_back({25, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, &ref_cells_});
+    bindings.push_back({26, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, &ref_sets_});
+  }
   runner_.set_scene(scene, bindings);
 }
 
@@ -109,6 +154,23 @@ BackendInfo sdf_global_backend() {
                          "the global field's voxel in world units; auto: the median instance's largest extent / 10 "
                          "(docs/backends.md, \"sdf-global\")",
                          "sampled fields (sdf-bricks, sdf-global)", {"auto"}, 1e-6, 1e9});
+  info.params.push_back({"exact_lists", ParamKind::Choice, "instances",
+                         "--hit exact's candidates near a surface: instances (the brick's instances, each through its mesh "
+                         "grid) or triangles (per-cell (instance, triangle) references built with the field, each cell's "
+                         "set tested once; docs/backends.md, \"sdf-global\")",
+                         "sampled fields (sdf-bricks, sdf-global)", {"instances", "triangles"}, 0, 0, false, "hit", "exact"});
+  info.params.push_back({"list_split", ParamKind::Integer, "1",
+                         "--exact-lists triangles: reference cells per voxel and axis (finer cells, fewer triangles per set, "
+                         "more cells)",
+                         "sampled fields (sdf-bricks, sdf-global)", {}, 1, sdf::kMaxListSplit, false, "exact_lists", "triangles"});
+  info.params.push_back({"exact_near", ParamKind::Real, "0.5",
+                         "--hit exact: the march hands over to the exact test where the field's bound falls below this "
+                         "many voxels (smaller: more steps, fewer tests)",
+                         "sampled fields (sdf-bricks, sdf-global)", {}, 0.01, 8, false, "hit", "exact"});
+  info.params.push_back({"exact_window", ParamKind::Real, "8",
+                         "--hit exact: one exact test covers this many voxels of the ray (within the brick; larger: fewer "
+                         "tests, each longer)",
+                         "sampled fields (sdf-bricks, sdf-global)", {}, 0.5, 64, false, "hit", "exact"});
   for (const ParamSpec& spec : brick_field_param_specs()) info.params.push_back(spec);
   info.params.push_back(sdf::sdf_params({"max_structure_mb"}, {"exact"}).front());
   info.counters = info.steps = info.stores_structure = true;

@@ -34,6 +34,7 @@ class SdfGlobalRenderer : public VulkanRenderer {
   SdfGpuTables tables_;
   BrickFieldTables field_tables_;
   GpuBuffer brick_lists_;
+  GpuBuffer ref_cells_, ref_sets_;  // --exact-lists triangles
   VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
 };
 

@@ -38,7 +38,8 @@
 #define COUNTER_TRIANGLE_TESTS 4u  // ray-triangle intersection tests (Möller-Trumbore)
 #define COUNTER_OUT_OF_STEPS 5u    // SDF: rays whose march ended by --max-steps
 #define COUNTER_FIELD_SAMPLES 6u   // sdf-bricks: trilinear samples of a brick field (each 8 texels, or 8 coarse ones)
-#define COUNTER_KINDS 7u
+#define COUNTER_CELL_SETS 7u       // sdf-global --exact-lists triangles: reference cells whose set was tested
+#define COUNTER_KINDS 8u
 #define COUNTERS_BINDING 32  // the per-pixel counters buffer: past every backend's bindings (8 and up)
 
 #define NO_INSTANCE 0xffffffffu     // the ray escaped to the sky

@@ -4,7 +4,7 @@
 // empty, so timed frames pay nothing.
 #if COUNTERS
 layout(std430, binding = COUNTERS_BINDING) buffer CounterBlock { uint pixel_counters[]; };  // COUNTER_KINDS per pixel
-uint counted[COUNTER_KINDS] = uint[COUNTER_KINDS](0u, 0u, 0u, 0u, 0u, 0u, 0u);
+uint counted[COUNTER_KINDS] = uint[COUNTER_KINDS](0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u);
 #define COUNT(kind, n) counted[kind] += (n)
 #else
 #define COUNT(kind, n)
