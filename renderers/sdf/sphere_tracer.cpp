@@ -122,12 +122,40 @@ bool SphereTracer::instance_crossing(const shading::Ray& ray, uint32_t instance_
   return crossed;
 }
 
+bool SphereTracer::window_crossing(const shading::Ray& ray, float t, float epsilon, uint32_t nearest, SurfaceHit& hit,
+                                   shading::PixelCounts* counts) const {
+  Crossing crossing;
+  bool found = instance_crossing(ray, nearest, t - epsilon, t + epsilon, crossing, counts);
+  if (found) hit = SurfaceHit{crossing.t, nearest, crossing.triangle, crossing.uv};
+  // The leaf the march evaluated at t lists every instance that can be closest there; the others'
+  // surfaces in the window lie in their boxes, and only before the best crossing so far can they win.
+  const SceneHash& hash = sdf_.hash;
+  const glm::vec3 lo = hash.origin, hi = hash.origin + glm::vec3(hash.dims) * hash.cell_size;
+  const OctreeNode& leaf = leaf_at(hash, glm::clamp(ray.origin + t * ray.dir, lo, hi));
+  for (uint32_t k = 0; k < leaf.list_count; ++k) {
+    const uint32_t i = hash.instance_lists[leaf.list_begin + k];
+    if (i == nearest) continue;
+    if (counts) (*counts)[COUNTER_AABB_TESTS] += 1;
+    float s0 = t - epsilon, s1 = found ? hit.t : t + epsilon;
+    const Aabb& box = culling_.instance_boxes[i];
+    shading::clip_to_box(ray.origin, ray.dir, box.min, box.max, s0, s1);
+    if (s0 > s1 || !instance_crossing(ray, i, s0, s1, crossing, counts)) continue;
+    // Ties go to the lower instance index, as in the kernel.
+    if (!found || crossing.t < hit.t || (crossing.t == hit.t && i < hit.instance)) {
+      hit = SurfaceHit{crossing.t, i, crossing.triangle, crossing.uv};
+      found = true;
+    }
+  }
+  return found;
+}
+
 // --hit thesis: the first converged point. --hit exact: a converged point where the ray crosses
 // no listed triangle passed the surface within epsilon (a silhouette), and the march goes on;
 // a ray that runs out of steps tests the rest of its segment against the instance nearest to its
-// last point, and only then falls back to its first converged point. The search covers one
-// epsilon on either side of the converged point, as far as a step can go, so converging again
-// near the same instance before that segment's end needs no second test.
+// last point, and only then falls back to its first converged point. The search (window_crossing)
+// covers one epsilon on either side of the converged point, as far as a step can go, for every
+// instance whose surface can lie there, so converging again near the same instance before that
+// segment's end needs no second test.
 bool SphereTracer::trace(const shading::Ray& ray, float tmax, SurfaceHit& hit, shading::PixelCounts* counts) const {
   const SceneHash& hash = sdf_.hash;
   const glm::vec3 lo = hash.origin, hi = hash.origin + glm::vec3(hash.dims) * hash.cell_size;
@@ -152,10 +180,11 @@ bool SphereTracer::trace(const shading::Ray& ray, float tmax, SurfaceHit& hit, s
   while ((end = march(ray, t1, t, steps, d, t_last, counts)) == MarchEnd::converged) {
     const float epsilon = epsilon_at(ray, t);
     if (exact && (d.instance != cleared_instance || t > cleared_until)) {
-      Crossing crossing;
-      if (instance_crossing(ray, d.instance, t - epsilon, t + epsilon, crossing, counts)) {
-        if (crossing.t >= tmax) return false;
-        hit = SurfaceHit{std::max(crossing.t, 0.0f), d.instance, crossing.triangle, crossing.uv};
+      SurfaceHit crossed{};
+      if (window_crossing(ray, t, epsilon, d.instance, crossed, counts)) {
+        if (crossed.t >= tmax) return false;
+        hit = crossed;
+        hit.t = std::max(crossed.t, 0.0f);
         return true;
       }
       cleared_instance = d.instance;

@@ -68,6 +68,12 @@ class SphereTracer {
   // exact_crossing() of the ray with an instance's mesh over [t_lo, t_hi], its tests counted.
   bool instance_crossing(const shading::Ray& ray, uint32_t instance_id, float t_lo, float t_hi, Crossing& crossing,
                          shading::PixelCounts* counts) const;
+  // The earliest exact crossing in [t - epsilon, t + epsilon] around a converged point: of the
+  // instance nearest to it, and of every other instance its leaf lists whose box meets that window.
+  // Where instances overlap, another one's surface can cross the window before the nearest one's
+  // (sdf_trace.comp's window_crossing).
+  bool window_crossing(const shading::Ray& ray, float t, float epsilon, uint32_t nearest, SurfaceHit& hit,
+                       shading::PixelCounts* counts) const;
   // The first surface before tmax (sdf_trace.comp's trace_sdf).
   bool trace(const shading::Ray& ray, float tmax, SurfaceHit& hit, shading::PixelCounts* counts) const;
 

@@ -31,9 +31,9 @@ const uint MARCH_LEFT = 1u;       // past t1: nothing there
 const uint MARCH_OUT_OF_STEPS = 2u;
 
 // Sphere tracing from t towards t1, `steps` of the ray's budget already spent; `last` is the
-// distance at `t_last`, the last point queried (at a convergence: t). The end test allows one
-// epsilon past t1: a step that lands a rounding error beyond the box's far face (a wall lying on
-// it) would otherwise end the march in front of the surface.
+// distance at `t_last`, the last point queried (at a convergence: t), `last_leaf` that point's
+// leaf word. The end test allows one epsilon past t1: a step that lands a rounding error beyond
+// the box's far face (a wall lying on it) would otherwise end the march in front of the surface.
 // --over-relax's fallback: back to the previous point's plain step, plain steps from then on.
 void step_back(inout float t, inout float omega, inout float step, float t_previous, float plain_previous) {
   t = t_previous + plain_previous;
@@ -44,7 +44,8 @@ void step_back(inout float t, inout float omega, inout float step, float t_previ
 // --over-relax (Keinert et al. 2014), as SphereTracer::march: steps of omega x the distance while
 // the spheres at both ends of a step overlap; else back to the previous point's plain step, and
 // plain steps from then on.
-uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistance last, inout float t_last) {
+uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistance last, inout float t_last,
+           inout uint last_leaf) {
   vec3 lo = sdf.hash_origin.xyz;
   vec3 hi = lo + vec3(sdf.hash_dims.xyz) * sdf.hash_origin.w;
   float omega = sdf.options.x, t_previous = t, plain_previous = 0.0f, previous = 0.0f, step = 0.0f;
@@ -86,6 +87,7 @@ uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistan
     SceneDistance d = leaf_distance(p, word);
     last = d;
     t_last = t;
+    last_leaf = word;
     if (omega > 1.0f && d.distance + previous < step) {
       step_back(t, omega, step, t_previous, plain_previous);
       continue;
@@ -110,14 +112,50 @@ uint march(Ray ray, float t1, inout float t, inout uint steps, inout SceneDistan
   return t > t1 + hit_epsilon(ray, t) ? MARCH_LEFT : MARCH_OUT_OF_STEPS;
 }
 
+// The earliest exact crossing in [t - epsilon, t + epsilon] around a converged point: of the
+// instance nearest to it, and of every other instance its leaf (`word`) lists whose box meets that
+// window. Where instances overlap, another one's surface can cross the window before the nearest
+// one's. As SphereTracer::window_crossing.
+bool window_crossing(Ray ray, float t, float epsilon, uint nearest, uint word, out float t_hit, out uint instance,
+                     out uint triangle, out vec2 uv) {
+  bool found = exact_crossing(ray, t - epsilon, t + epsilon, nearest, t_hit, triangle, uv);
+  instance = nearest;
+  // The leaf lists every instance that can be closest at t; the others' surfaces in the window lie
+  // in their boxes, and only before the best crossing so far can they win.
+  int list = int(word & ~SDF_LEAF_BIT);
+  uint count = SDF_FETCH(instance_lists, list).x;
+  for (uint k = 0u; k < count; ++k) {
+    uint i = SDF_FETCH(instance_lists, list + 2 + int(k)).x;
+    if (i == nearest) continue;
+    COUNT(COUNTER_AABB_TESTS, 1u);
+    int record = int(i) * SDF_INSTANCE_TEXELS;
+    float s0 = t - epsilon, s1 = found ? t_hit : t + epsilon;
+    clip_to_box(ray.origin, ray.dir, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
+                uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz), s0, s1);
+    float ti;
+    uint tri;
+    vec2 uvi;
+    if (s0 > s1 || !exact_crossing(ray, s0, s1, i, ti, tri, uvi)) continue;
+    // Ties go to the lower instance index, as in sdf-cpu.
+    if (!found || ti < t_hit || (ti == t_hit && i < instance)) {
+      t_hit = ti;
+      instance = i;
+      triangle = tri;
+      uv = uvi;
+      found = true;
+    }
+  }
+  return found;
+}
+
 // The first surface along the ray before tmax. --hit thesis: the first converged point, its
 // normal and uv from the closest point on the nearest triangle (as in the thesis). --hit exact:
 // a converged point where the ray crosses no listed triangle passed the surface within epsilon
 // (a silhouette), and the march goes on; a ray that runs out of steps tests the rest of its
 // segment against the instance nearest to its last point, and only then falls back to its first
-// converged point. The search covers one epsilon on either side of the converged point, as
-// far as a step can go, so converging again near the same instance before that segment's end
-// needs no second test.
+// converged point. The search (window_crossing) covers one epsilon on either side of the
+// converged point, as far as a step can go, for every instance whose surface can lie there, so
+// converging again near the same instance before that segment's end needs no second test.
 bool trace_sdf(Ray ray, float tmax, out float t, out uint instance, out uint triangle, out vec2 uv) {
   float t1;
   if (!clip_to_hash_box(ray, tmax, t, t1)) return false;
@@ -131,19 +169,19 @@ bool trace_sdf(Ray ray, float tmax, out float t, out uint instance, out uint tri
   float cleared_until = 0.0f;
   SceneDistance d = SceneDistance(0.0f, SDF_NONE, SDF_NONE);
   float t_last = t;
+  uint leaf = SDF_LEAF_BIT;
   uint end;
-  while ((end = march(ray, t1, t, steps, d, t_last)) == MARCH_CONVERGED) {
+  while ((end = march(ray, t1, t, steps, d, t_last, leaf)) == MARCH_CONVERGED) {
     float epsilon = hit_epsilon(ray, t);
     if (exact && (d.instance != cleared_instance || t > cleared_until)) {
       float t_hit;
-      bool crossed = exact_crossing(ray, t - epsilon, t + epsilon, d.instance, t_hit, triangle, uv);
+      bool crossed = window_crossing(ray, t, epsilon, d.instance, leaf, t_hit, instance, triangle, uv);
       // (SDF_REPEAT_EXACT: the time breakdown's copy, as in sdf_scene_distance.glsl.)
       for (int r = 1; r < SDF_REPEAT_EXACT; ++r)
-        crossed = exact_crossing(ray, t - epsilon + float(r) * sdf.tracing.w, t + epsilon, d.instance, t_hit, triangle, uv);
+        crossed = window_crossing(ray, t + float(r) * sdf.tracing.w, epsilon, d.instance, leaf, t_hit, instance, triangle, uv);
       if (crossed) {
         if (t_hit >= tmax) return false;
         t = max(t_hit, 0.0f);
-        instance = d.instance;
         return true;
       }
       cleared_instance = d.instance;
