@@ -1,6 +1,6 @@
 // `sdfbench sweep`: every combination of one backend's parameters on one scene, each point with
 // its build time, bytes, FPS, Mrays/s, counters and agreement. Every parameter a backend declares
-// (renderers/backend_registry.h) is an axis.
+// (renderers/backend_registry.h) is an axis, and so is an overlap: scene's k (--overlap).
 
 #include <algorithm>
 #include <map>
@@ -8,6 +8,7 @@
 #include "harness/cli_common.h"
 #include "harness/commands.h"
 #include "harness/list_option.h"
+#include "harness/overlap_axis.h"
 #include "harness/run_options.h"
 #include "scenes/scene_source.h"
 #include "util/error.h"
@@ -16,7 +17,7 @@ namespace sdfbench {
 namespace {
 
 struct SweepArgs {
-  std::string scene, backend = "sdf-octree", mode = "primary", size = "320x180";
+  std::string scene, backend = "sdf-octree", mode = "primary", size = "320x180", overlap;
   unsigned max_depth = 4;
   std::map<std::string, std::string> axes;  // parameter name -> comma-separated values, as given
   RunOptions run;
@@ -53,8 +54,17 @@ void run_sweep(SweepArgs args) {
     axes.emplace_back(name, values);
   }
   check_options_taken(args.options, {args.backend});
-  check_plan_size(axis_sizes);
+  // --overlap: the scene's k varies slowest, so each scene is loaded once.
   std::vector<BenchConfig> plan = {base};
+  if (!args.overlap.empty()) {
+    plan.clear();
+    for (const double k : parse_overlap_list(args.overlap)) {
+      plan.push_back(base);
+      plan.back().scene = with_overlap(args.scene, k);
+    }
+    axis_sizes.emplace(axis_sizes.begin(), "--overlap", plan.size());
+  }
+  check_plan_size(axis_sizes);
   for (const ParamSpec& spec : backend.params) {  // the backend's order: its first parameter varies slowest
     const auto axis = std::find_if(axes.begin(), axes.end(), [&](const auto& a) { return a.first == spec.name; });
     if (axis == axes.end()) continue;
@@ -80,6 +90,8 @@ void register_sweep_command(CLI::App& app) {
   cmd->add_option("--mode", args->mode, "primary | shadow | whitted")->capture_default_str();
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--max-depth", args->max_depth, "whitted recursion depth")->capture_default_str()->check(CLI::Range(0u, 16u));
+  cmd->add_option("--overlap", args->overlap,
+                  "with an overlap:<mesh>:<count>:<k> --scene: its k as an axis, comma-separated, 1..64 (the scene's k replaced)");
   add_backend_param_list_options(*cmd, args->axes);
   add_run_options(*cmd, args->run);
   cmd->add_option("--device", args->options.device, "Vulkan device: lavapipe (default), gpu, an index or a name");

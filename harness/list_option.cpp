@@ -65,6 +65,7 @@ std::vector<T> parse_list(const std::string& text, const std::string& option) {
   refuse_repeats(values, items, text, option);
   return values;
 }
+template std::vector<double> parse_list<double>(const std::string&, const std::string&);
 template std::vector<float> parse_list<float>(const std::string&, const std::string&);
 template std::vector<unsigned> parse_list<unsigned>(const std::string&, const std::string&);
 template std::vector<size_t> parse_list<size_t>(const std::string&, const std::string&);

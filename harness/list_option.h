@@ -10,7 +10,7 @@ namespace sdfbench {
 // The non-empty items of `text`; throws Error naming `option` for an empty list or an item given twice.
 std::vector<std::string> split_list(const std::string& text, const std::string& option);
 
-// Non-negative finite numbers (unsigned, size_t, float); throws Error naming `option` and the item
+// Non-negative finite numbers (unsigned, size_t, float, double); throws Error naming `option` and the item
 // for anything else (out of range: with the type's maximum), and for a value given twice.
 template <class T>
 std::vector<T> parse_list(const std::string& text, const std::string& option);

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "harness/overlap_axis.h"
 #include "harness/row_verdict.h"
 #include "renderers/backend_registry.h"
 
@@ -37,15 +38,17 @@ std::string fixed(double v, int digits) {
 
 bool truncated(const Row& r) { return r.verdict().has(Mark::truncated); }
 
-// FPS with ~3 significant digits, and the row's marks (harness/row_verdict.h); an ERROR row has
-// no FPS, its mark stands in for it.
-std::string fps_cell(const Row& r) {
+// A speed (`column`: fps or mrays_per_s) with ~3 significant digits, and the row's marks
+// (harness/row_verdict.h); an ERROR row has no speed, its mark stands in for it.
+std::string speed_cell(const Row& r, const std::string& column) {
   const RowVerdict verdict = r.verdict();
   if (verdict.is_error()) return verdict.symbols();
-  const double fps = r.number("fps");
-  const std::string text = fixed(fps, fps >= 100 ? 0 : fps >= 10 ? 1 : fps >= 1 ? 2 : 3);
+  const double v = r.number(column);
+  const std::string text = fixed(v, v >= 100 ? 0 : v >= 10 ? 1 : v >= 1 ? 2 : 3);
   return verdict.marks.empty() ? text : text + " " + verdict.symbols();
 }
+
+std::string fps_cell(const Row& r) { return speed_cell(r, "fps"); }
 
 std::string thesis_cell(const ThesisValue& v) { return v.upper_bound ? "<1" : fixed(v.fps, v.fps >= 10 ? 0 : 1); }
 
@@ -102,6 +105,13 @@ void thesis_table(std::ostringstream& out, const ThesisTableConfig& config, cons
   out << "\n";
 }
 
+// a's FPS / b's ("2.50x"; ✂ when either was cut short), "–" without both.
+std::string ratio_cell(const Row* a, const Row* b) {
+  std::string cell = a && b && b->number("fps") > 0 ? fixed(a->number("fps") / b->number("fps"), 2) + "x" : "–";
+  if (a && b && (truncated(*a) || truncated(*b))) cell += " ✂";
+  return cell;
+}
+
 // mesh x objects: FPS of `numerator`'s row / FPS of `denominator`'s, then `note(mesh, objects)`.
 void ratio_table(std::ostringstream& out, const std::vector<Row>& numerator, const std::vector<Row>& denominator,
                  const std::function<std::string(const std::string&, size_t)>& note) {
@@ -110,11 +120,7 @@ void ratio_table(std::ostringstream& out, const std::vector<Row>& numerator, con
   for (const std::string& mesh : ordered_meshes(numerator)) {
     out << "| " << mesh << " |";
     for (size_t c : counts) {
-      const Row* a = find_row(numerator, mesh, c);
-      const Row* b = find_row(denominator, mesh, c);
-      std::string cell = a && b && b->number("fps") > 0 ? fixed(a->number("fps") / b->number("fps"), 2) + "x" : "–";
-      if (a && b && (truncated(*a) || truncated(*b))) cell += " ✂";
-      out << " " << cell << note(mesh, c) << " |";
+      out << " " << ratio_cell(find_row(numerator, mesh, c), find_row(denominator, mesh, c)) << note(mesh, c) << " |";
     }
     out << "\n";
   }
@@ -175,6 +181,80 @@ void backends_table(std::ostringstream& out, const std::string& mode, const std:
   out << "\n";
 }
 
+// The overlap measured in the row's scene (CSV column overlap), "–" where none was.
+std::string overlap_cell(const Row& r) { return r["overlap"].empty() ? "–" : fixed(r.number("overlap"), 1); }
+
+// Adds `r` to the first group whose first row `same` accepts, or starts a group (file order kept).
+template <class Same>
+void add_to_group(std::vector<std::vector<Row>>& groups, const Row& r, Same same) {
+  const auto it = std::find_if(groups.begin(), groups.end(), [&](const std::vector<Row>& g) { return same(g.front(), r); });
+  if (it == groups.end()) groups.push_back({r});
+  else it->push_back(r);
+}
+
+template <class T>
+void add_once(std::vector<T>& list, const T& value) {
+  if (std::find(list.begin(), list.end(), value) == list.end()) list.push_back(value);
+}
+
+const BackendInfo* registered(const std::string& name) {
+  for (const BackendInfo& b : backends())
+    if (b.name == name) return &b;
+  return nullptr;  // a backend a CSV names that this sdfbench lacks (registered at run time elsewhere)
+}
+
+// Issue 37's question, from the registry's kinds: does a distance field (sdf-*) pass a hierarchy
+// (a BVH in a compute kernel, the driver's ray tracing) on the same device?
+bool is_field(const BackendInfo* b) { return b && b->vulkan && b->kind.rfind("sdf-", 0) == 0; }
+bool is_hierarchy(const BackendInfo* b) { return b && b->vulkan && (b->kind == "compute-bvh" || b->kind == "driver-rt"); }
+
+// The overlap table's rows of one mesh, object count and mode: a row per k (asked, and the
+// overlap measured in the scene), Mrays/s per backend, then each field's FPS over each hierarchy's.
+void overlap_table(std::ostringstream& out, const std::vector<Row>& rows) {
+  std::vector<std::string> names, ks;
+  for (const Row& r : rows) {
+    add_once(names, r["backend"]);
+    add_once(ks, asked_overlap(r["scene"]));
+  }
+  std::vector<std::pair<std::string, std::string>> ratios;
+  for (const std::string& a : names)
+    for (const std::string& b : names)
+      if (is_field(registered(a)) && is_hierarchy(registered(b))) ratios.emplace_back(a, b);
+  const auto find = [&](const std::string& k, const std::string& backend) -> const Row* {
+    for (const Row& r : rows)
+      if (asked_overlap(r["scene"]) == k && r["backend"] == backend) return &r;
+    return nullptr;
+  };
+  const Row& first = rows.front();
+  out << "### Overlap: " << first["mesh"] << ", " << first["objects"] << " objects, " << first["mode"] << " mode (" << sizes_of(rows)
+      << "): Mrays/s\n\nk: the scene's overlap as asked (`overlap:<mesh>:<count>:<k>`); overlap: as measured (instance boxes over "
+         "a point of their union)";
+  if (!ratios.empty()) out << "; a / b: a's FPS / b's (above 1: the distance field is faster)";
+  out << ".\n\n| k | overlap |";
+  for (const std::string& b : names) out << " " << b << " |";
+  for (const auto& [a, b] : ratios) out << " " << a << " / " << b << " |";
+  out << "\n|---:|---:|";
+  for (size_t i = 0; i < names.size() + ratios.size(); ++i) out << "---:|";
+  out << "\n";
+  for (const std::string& k : ks) {
+    std::string measured = "–";
+    for (const Row& r : rows)
+      if (asked_overlap(r["scene"]) == k && !r["overlap"].empty()) measured = overlap_cell(r);
+    out << "| " << k << " | " << measured << " |";
+    for (const std::string& b : names) {
+      const Row* r = find(k, b);
+      out << " " << (r ? speed_cell(*r, "mrays_per_s") : "–") << " |";
+    }
+    for (const auto& [a, b] : ratios) {
+      const Row *ra = find(k, a), *rb = find(k, b);
+      const bool failed = (ra && ra->verdict().is_error()) || (rb && rb->verdict().is_error());
+      out << " " << (failed ? "–" : ratio_cell(ra, rb)) << " |";
+    }
+    out << "\n";
+  }
+  out << "\n";
+}
+
 // A sweep: the parameters that vary over its rows (renderers/backend_registry.h: any backend's),
 // the structure's cost, the speed, the counters the backend has and the agreement (a sampled
 // field's depth error also in voxels).
@@ -198,17 +278,22 @@ void sweep_table(std::ostringstream& out, const std::vector<Row>& rows) {
       {"depth_p99_voxels", "depth p99 (voxels)", 3, 1}, {"psnr", "PSNR dB", 1, 1}};
   for (const Figure& f : optional)
     if (std::any_of(rows.begin(), rows.end(), [&](const Row& r) { return !r[f.column].empty(); })) figures.push_back(f);
-  out << "### Sweep: " << rows.front()["scene"] << ", " << rows.front()["backend"] << ", " << rows.front()["mode"] << " ("
-      << sizes_of(rows) << ")\n\n|";
+  // sweep --overlap: the scene's k (asked, and the overlap measured) is an axis too
+  const bool over_k = std::any_of(rows.begin(), rows.end(), [&](const Row& r) { return r["scene"] != rows.front()["scene"]; });
+  out << "### Sweep: " << overlap_family(rows.front()["scene"]) << ", " << rows.front()["backend"] << ", " << rows.front()["mode"]
+      << " (" << sizes_of(rows) << ")\n\n|";
+  if (over_k) out << " k | overlap |";
   for (const std::string& name : varying) out << " " << name << " |";
   out << " FPS | Mrays/s |";
   for (const Figure& f : figures) out << " " << f.title << " |";
   out << "\n|";
+  if (over_k) out << "---:|---:|";
   for (size_t i = 0; i < varying.size(); ++i) out << "---|";
   for (size_t i = 0; i < figures.size() + 2; ++i) out << "---:|";
   out << "\n";
   for (const Row& r : rows) {
     out << "|";
+    if (over_k) out << " " << asked_overlap(r["scene"]) << " | " << overlap_cell(r) << " |";
     for (const std::string& name : varying) out << " " << (r[name].empty() ? "–" : r[name]) << " |";
     out << " " << fps_cell(r) << " | " << fixed(r.number("mrays_per_s"), 3) << " |";
     for (const Figure& f : figures)
@@ -224,15 +309,19 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
   const std::vector<Row> rows = rows_of(csv);
   std::ostringstream out;
   std::map<std::string, std::vector<Row>> by_table, by_mode;
-  std::vector<std::vector<Row>> sweeps;  // one table per scene, backend and mode (merged sweeps), in file order
+  std::vector<std::vector<Row>> sweeps;  // one table per scene (its every k), backend and mode (merged sweeps), in file order
+  std::vector<std::vector<Row>> overlaps;  // one table per mesh, object count and mode, in file order
   for (const Row& r : rows) {
+    if (r["table"] == kOverlapTable) {
+      add_to_group(overlaps, r, [](const Row& a, const Row& b) {
+        return a["mesh"] == b["mesh"] && a["objects"] == b["objects"] && a["mode"] == b["mode"];
+      });
+      continue;
+    }
     if (r["table"] == "sweep") {
-      const auto same = [&](const std::vector<Row>& s) {
-        return s.front()["scene"] == r["scene"] && s.front()["backend"] == r["backend"] && s.front()["mode"] == r["mode"];
-      };
-      const auto it = std::find_if(sweeps.begin(), sweeps.end(), same);
-      if (it == sweeps.end()) sweeps.push_back({r});
-      else it->push_back(r);
+      add_to_group(sweeps, r, [](const Row& a, const Row& b) {
+        return overlap_family(a["scene"]) == overlap_family(b["scene"]) && a["backend"] == b["backend"] && a["mode"] == b["mode"];
+      });
       continue;
     }
     if (!r["table"].empty()) by_table[r["table"]].push_back(r);
@@ -246,6 +335,7 @@ std::string markdown_report(const CsvTable& csv, const ThesisTables& thesis) {
     for (const BackendInfo& backend : backends())  // the pairs each backend declares (renderers/backend_registry.h)
       for (const BackendPartner& partner : backend.partners) pair_table(out, mode, mode_rows, backend.name, partner.other, partner.what);
   }
+  for (const std::vector<Row>& overlap : overlaps) overlap_table(out, overlap);
   for (const std::vector<Row>& sweep : sweeps) sweep_table(out, sweep);
   if (rows.empty()) out << "(no measurements)\n";
   // Every mark a row can get here (≠ is the HTML report's: it re-renders rows).

@@ -1,7 +1,8 @@
 #pragma once
 // Markdown views of a measurement CSV: the thesis' tables laid out like the thesis (rows
 // meshes, columns object counts) with the thesis' value beside ours, the 6.1/6.3 speed-up,
-// every backend side by side per mode, and sweeps. Flagged cells carry the row's marks
+// every backend side by side per mode, the overlap table (a row per k, every backend, each
+// distance field over each hierarchy), and sweeps. Flagged cells carry the row's marks
 // (harness/row_verdict.h: ERROR, ✗, ✂, V, † and ‡), explained below the tables.
 #include <string>
 

@@ -303,7 +303,6 @@ TEST(SweepCommand, StorageTablesAreAnAxis) {
 
 TEST(TableCommand, BadArgumentsAreClearErrors) {
   const std::pair<std::string, std::string> cases[] = {
-      {"table --table 6.4", "--table '6.4'"},
       {"table --meshes cube", "not a thesis mesh"},
       {"table --objects 1,x", "--objects"},
       {"table --backends embree,raytracer", "unknown backend"},
@@ -327,6 +326,21 @@ TEST(TableCommand, BadArgumentsAreClearErrors) {
       {"compare --scene thesis:sphere:1 --backends embree,embree", "'embree' is listed twice"},
       {"compare --scene thesis:sphere:1 --backends embree", "nothing to compare"},
       {"render --scene thesis:sphere:99999999999 --backend embree", "'99999999999' is out of range (at most 4294967295)"},
+      // Issue 37: the overlap axis.
+      {"table --overlap 1,2", "sdfbench: error: --overlap: only the overlap table reads it (--table overlap)"},
+      {"table --table 6.1 --overlap 1,2", "--overlap: only the overlap table reads it"},
+      {"table --table overlap,6.1", "--table 'overlap,6.1': overlap is a table of its own"},
+      {"table --table overlap --overlap 0.5", "--overlap '0.5': 0.5 is outside [1, 64]"},
+      {"table --table overlap --overlap 1,65", "--overlap '1,65': 65 is outside [1, 64]"},
+      {"table --table overlap --overlap 2,2.0", "--overlap '2,2.0': '2.0' is listed twice (as '2')"},
+      {"table --table overlap --overlap 1,x", "--overlap '1,x': 'x' is not a non-negative number"},
+      {"table --table overlap --triangles 1000", "--triangles: the overlap table's scenes"},
+      {"table --table overlap --meshes cube", "not a thesis mesh"},
+      {"table --table 6.4", "--table '6.4': expected 6.1, 6.2, 6.3, all or overlap"},
+      {"sweep --scene thesis:sphere:1 --backend sdf-cpu --overlap 1,2",
+       "--overlap varies the k of an overlap:<mesh>:<count>:<k> scene; --scene 'thesis:sphere:1' is not one"},
+      {"sweep --scene overlap:sphere:4:2 --backend sdf-cpu --overlap 1,70", "--overlap '1,70': 70 is outside [1, 64]"},
+      {"sweep --scene overlap:cube:4:2 --backend sdf-cpu --overlap 1,2", "unknown mesh 'cube'"},
   };
   for (const auto& [args, words] : cases) {
     const test::CommandResult r = test::run_sdfbench(args);

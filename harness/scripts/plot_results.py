@@ -19,6 +19,10 @@ Writes, for whatever the CSVs contain:
                               the mesh-size axis (meshes "<mesh>@<triangles>", table --triangles):
                               ms per frame, build ms, structure bytes and triangle work per ray vs
                               the real triangle count (log-log), one line per backend
+  mrays_vs_overlap_<mesh>_<n>objects_<mode>.png
+                              the overlap axis (table --table overlap): Mrays/s vs the overlap measured
+                              in each scene (log-log), one line per backend, the k each scene asked
+                              for on the top axis
 Rows flagged as disagreeing with the reference are drawn hollow; budget-cut rows get a dagger.
 """
 import argparse
@@ -31,6 +35,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 THESIS_CSV = os.path.join(HERE, "..", "..", "scenes", "thesis_tables.csv")
@@ -68,6 +73,17 @@ def number(text):
         return None
 
 
+def on_object_axis(row):
+    """a row of the thesis' tables or their extra backends (not a sweep, not the overlap table)"""
+    return row["table"] not in ("sweep", "overlap")
+
+
+def asked_overlap(scene):
+    """'overlap:bunny:1000:4[:seed]' -> '4'"""
+    parts = scene.split(":")
+    return parts[3] if parts[0] == "overlap" and len(parts) >= 4 else ""
+
+
 def usable(row):
     # a TRUNCATED row's FPS is invalid: lavapipe's loop limit cut pixels short
     return not row["agreement"].startswith(("ERROR", "TRUNCATED")) and (number(row["fps"]) or 0) > 0
@@ -94,7 +110,7 @@ def plot_series(ax, points, label, marker="o", color=None):
 
 
 def fps_vs_objects(rows, out_dir):
-    table_rows = [r for r in rows if r["table"] != "sweep" and usable(r) and "@" not in r["mesh"]]
+    table_rows = [r for r in rows if on_object_axis(r) and usable(r) and "@" not in r["mesh"]]
     for mode in sorted({r["mode"] for r in table_rows}):
         mode_rows = [r for r in table_rows if r["mode"] == mode]
         meshes = list(dict.fromkeys(r["mesh"] for r in mode_rows))
@@ -154,7 +170,7 @@ def thesis_vs_measured(rows, out_dir):
 
 
 def cost_vs_triangles(rows, out_dir):
-    sized = [r for r in rows if r["table"] != "sweep" and usable(r) and "@" in r["mesh"]]
+    sized = [r for r in rows if on_object_axis(r) and usable(r) and "@" in r["mesh"]]
     panels = (("ms_median", "ms per frame"), ("build_ms", "structure build (ms)"), ("structure_bytes", "structure bytes"),
               ("triangle_work", "triangle distances + tests per ray"))
     palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -187,6 +203,46 @@ def cost_vs_triangles(rows, out_dir):
             fig.suptitle(f"cost vs triangles: {', '.join(meshes)}, {objects} object(s), {mode}, {', '.join(sizes)} "
                          f"(device: {group[0]['device']})", fontsize=10)
             save(fig, os.path.join(out_dir, f"cost_vs_triangles_{mode}_{objects}objects.png"))
+
+
+def mrays_vs_overlap(rows, out_dir):
+    axis_rows = [r for r in rows if r["table"] == "overlap" and usable(r) and number(r["overlap"]) is not None]
+    palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    colors = {b: palette[i % len(palette)] for i, b in enumerate(dict.fromkeys(r["backend"] for r in axis_rows))}
+    plain = matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:g}")
+    for mesh, objects, mode in dict.fromkeys((r["mesh"], int(r["objects"]), r["mode"]) for r in axis_rows):
+        group = [r for r in axis_rows if (r["mesh"], int(r["objects"]), r["mode"]) == (mesh, objects, mode)]
+        fig, ax = plt.subplots(figsize=(7.2, 4.4))
+        series = defaultdict(list)
+        for r in group:
+            series[r["backend"]].append((number(r["overlap"]), number(r["mrays_per_s"]), r))
+        for backend, points in series.items():
+            plot_series(ax, points, backend, color=colors[backend])
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.yaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1, 2, 5)))
+        ax.yaxis.set_major_formatter(plain)
+        ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        # the overlap measured in each scene below, the k its spec asked for above
+        measured = {}
+        for r in group:
+            measured.setdefault(asked_overlap(r["scene"]), number(r["overlap"]))
+        ticks = sorted(measured.values())
+        ax.set_xticks(ticks, [f"{t:.1f}" for t in ticks])
+        ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
+        top = ax.secondary_xaxis("top")
+        top.set_xticks(ticks, [k for k, _ in sorted(measured.items(), key=lambda item: item[1])])
+        top.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
+        top.set_xlabel("k asked (overlap:<mesh>:<count>:<k>)", fontsize=8)
+        ax.set_xlabel("overlap measured (instance boxes over a point of their union)")
+        ax.set_ylabel("Mrays/s")
+        ax.grid(True, which="major", alpha=0.3)
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1))
+        sizes = sorted({f'{r["width"]}x{r["height"]}' for r in group})
+        devices = sorted({short_device(r["device"]) for r in group})
+        ax.set_title(f"{mesh}, {objects} objects, {mode}, {', '.join(sizes)} (devices: {', '.join(devices)}; "
+                     "hollow: disagrees with Embree)", fontsize=9)
+        save(fig, os.path.join(out_dir, f"mrays_vs_overlap_{mesh}_{objects}objects_{mode}.png"))
 
 
 def is_brick_sweep(row):
@@ -232,7 +288,7 @@ def global_sweep(rows, out_dir):
 
 
 def structure_cost(rows, out_dir):
-    table_rows = [r for r in rows if r["table"] != "sweep" and usable(r) and "@" not in r["mesh"]
+    table_rows = [r for r in rows if on_object_axis(r) and usable(r) and "@" not in r["mesh"]
                   and number(r.get("structure_bytes", "")) is not None]
     for mode in sorted({r["mode"] for r in table_rows}):
         mode_rows = [r for r in table_rows if r["mode"] == mode]
@@ -344,6 +400,7 @@ def main():
     global_sweep(rows, args.out_dir)
     structure_cost(rows, args.out_dir)
     cost_vs_triangles(rows, args.out_dir)
+    mrays_vs_overlap(rows, args.out_dir)
 
 
 if __name__ == "__main__":
