@@ -131,7 +131,8 @@ bool SphereTracer::window_crossing(const shading::Ray& ray, float t, float epsil
   // surfaces in the window lie in their boxes, and only before the best crossing so far can they win.
   const SceneHash& hash = sdf_.hash;
   const glm::vec3 lo = hash.origin, hi = hash.origin + glm::vec3(hash.dims) * hash.cell_size;
-  const OctreeNode& leaf = leaf_at(hash, glm::clamp(ray.origin + t * ray.dir, lo, hi));
+  const glm::vec3 p = glm::clamp(ray.origin + t * ray.dir, lo, hi);  // named: GCC 14 takes a temporary's for a dangling reference
+  const OctreeNode& leaf = leaf_at(hash, p);
   for (uint32_t k = 0; k < leaf.list_count; ++k) {
     const uint32_t i = hash.instance_lists[leaf.list_begin + k];
     if (i == nearest) continue;
