@@ -1,7 +1,8 @@
 // sdf-global's exact hits through triangle references (--exact-lists triangles;
 // renderers/sdf/cell_triangle_refs.h): a stored brick's reference cells along the ray, each
 // cell's set of (instance, triangle) pairs tested once over the ray's part in the cell. Needs
-// sdf_exact_crossing.glsl, brick_trace.glsl and the kernel's brick_exit() before it;
+// sdf_exact_crossing.glsl, brick_trace.glsl and the kernel's brick_exit() and march_to_near()
+// before it;
 // GLOBAL_REF_SPLIT is --list-split.
 #ifndef SDFBENCH_GLOBAL_CELL_REFS_GLSL
 #define SDFBENCH_GLOBAL_CELL_REFS_GLSL
@@ -107,29 +108,15 @@ bool trace_cells(Ray ray, InstanceRay r, float t, float t1, float t_start, inout
     float bound = 0.0f;
     uint slot = BRICK_EMPTY;
     if (!walking) {
-      // The exact test is kept out of this loop, so that the SIMD lanes of a CPU device step
-      // together and then test together.
-      bool near = false;
-      for (; t <= t1 && ray_steps < sdf.hash_dims.w; ++ray_steps) {
-        COUNT(COUNTER_STEPS, 1u);
-        FieldSample s = sample_at(r, t);
-        if (s.bound < BRICK_NEAR_VOXELS * voxel && s.slot != BRICK_EMPTY) {
-          near = true;
-          bound = s.bound;
-          slot = s.slot;
-          break;
-        }
-        // An empty brick holds no surface: the ray goes on from its far side at least.
-        float t_next = t + s.bound;
-        if (s.empty) t_next = max(t_next, brick_exit(ray, r.f, brick_at(r.f, ray.origin + t * ray.dir)));
-        t = max(t_next, t + face_slack(ray, t));
-      }
-      if (!near) {
+      FieldSample s;
+      if (march_to_near(ray, r, t, t1, s)) {
+        bound = s.bound;
+        slot = s.slot;
+        ++ray_steps;
+      } else {
         if (t > t1) return false;
         COUNT(COUNTER_OUT_OF_STEPS, 1u);
         walking = true;
-      } else {
-        ++ray_steps;
       }
     }
     // Marching: the sampled brick (the same arithmetic as the sample's); walking: the one ahead.

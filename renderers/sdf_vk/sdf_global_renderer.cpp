@@ -1,8 +1,10 @@
 #include "renderers/sdf_vk/sdf_global_renderer.h"
 
+#include <cmath>
 #include <iostream>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "renderers/backend_registry.h"
 #include "renderers/sdf/cell_triangle_refs.h"
@@ -15,16 +17,17 @@
 namespace sdfbench {
 namespace {
 
-// The per-brick instance lists as sdf_global.comp reads them: word s (s <= stored bricks) is where
-// stored brick s's instances start in the same buffer, word s + 1 where they end.
-std::vector<uint32_t> flatten_lists(const sdf::GlobalField& global) {
-  const size_t offset = global.list_begin.size();
-  if (offset + global.list_instances.size() >= std::numeric_limits<uint32_t>::max())
-    throw Error("the global field's instance lists are too long for the kernel's 32-bit indices; use a larger --global-voxel");
+// A table as sdf_global.comp reads it: per stored brick a word that is where its part starts in the
+// same buffer (`heads`, offsets into `body`, moved past the heads; kNoCellTable stays), then the
+// body. The instance lists: heads s and s + 1 bound stored brick s's instances; --exact-lists
+// triangles' cells (global_cell_refs.glsl): head s is brick s's cell table, or none.
+std::vector<uint32_t> headed_table(const std::vector<uint32_t>& heads, const std::vector<uint32_t>& body, const char* too_long) {
+  const uint64_t offset = heads.size();
+  if (offset + body.size() >= std::numeric_limits<uint32_t>::max()) throw Error(too_long);
   std::vector<uint32_t> words;
-  words.reserve(offset + global.list_instances.size());
-  for (uint32_t begin : global.list_begin) words.push_back(static_cast<uint32_t>(offset + begin));
-  words.insert(words.end(), global.list_instances.begin(), global.list_instances.end());
+  words.reserve(offset + body.size());
+  for (uint32_t head : heads) words.push_back(head == sdf::kNoCellTable ? head : static_cast<uint32_t>(offset + head));
+  words.insert(words.end(), body.begin(), body.end());
   return words;
 }
 
@@ -39,20 +42,6 @@ sdf::SceneHashParams one_cell_hash(const Scene& scene, uint64_t max_bytes) {
   p.lists = sdf::ListRule::Thesis;
   p.max_bytes = max_bytes;
   return p;
-}
-
-// --exact-lists triangles as sdf_global.comp reads them (global_cell_refs.glsl): per stored brick
-// its cell table's start in the same buffer (or SDF_NONE), then the tables.
-std::vector<uint32_t> flatten_cells(const sdf::CellTriangleRefs& refs) {
-  const uint64_t offset = refs.brick_tables.size();
-  if (offset + refs.cells.size() >= std::numeric_limits<uint32_t>::max())
-    throw Error("the triangle references' cell tables are too long for the kernel's 32-bit indices; use a smaller --list-split");
-  std::vector<uint32_t> words;
-  words.reserve(offset + refs.cells.size());
-  for (uint32_t table : refs.brick_tables)
-    words.push_back(table == sdf::kNoCellTable ? sdf::kNoCellTable : static_cast<uint32_t>(offset + table));
-  words.insert(words.end(), refs.cells.begin(), refs.cells.end());
-  return words;
 }
 
 std::string kernel_defines(const BackendOptions& options, bool sampler) {
@@ -106,14 +95,16 @@ void SdfGlobalRenderer::prepare(const Scene& scene) {
     std::ostringstream resolved;
     resolved << "brick_fetch=" << (sampler_ ? "sampler" : "texel") << " voxel=" << sdf.global_field.field.voxel;
     if (triangle_refs) {  // built with the field each time (not cached): their time is in the row
-      const sdf::CellTriangleRefs refs = sdf::build_cell_triangle_refs(
+      sdf::CellTriangleRefs refs = sdf::build_cell_triangle_refs(
           scene, sdf.global_field.field, static_cast<uint32_t>(options_.params.integer("list_split")), field_params_.max_bytes);
       ms += refs.build_ms;
       bytes += refs.bytes();
       resolved << " references=" << refs.references << " set_words=" << refs.sets.size()
                << " reference_mb=" << std::round(refs.bytes() / 1e5) / 10;
-      ref_cells = flatten_cells(refs);
-      ref_sets = refs.sets;
+      ref_cells = headed_table(refs.brick_tables, refs.cells,
+                               "the triangle references' cell tables are too long for the kernel's 32-bit indices; use a "
+                               "smaller --list-split");
+      ref_sets = std::move(refs.sets);
     }
     stats_ = StructureStats{ms, bytes, {}, resolved.str()};
     stats_->instance_voxels.assign(scene.instances.size(), sdf.global_field.field.voxel);
@@ -123,7 +114,9 @@ void SdfGlobalRenderer::prepare(const Scene& scene) {
     arrays.instance_lists = {0u, 0u};
     arrays.params.options.y = tracing_.hit == sdf::HitMode::field ? kFieldHitOffsetVoxels * sdf.global_field.field.voxel : 0.0f;
     field = flatten_brick_fields({sdf.global_field.field});
-    lists = flatten_lists(sdf.global_field);
+    lists = headed_table(sdf.global_field.list_begin, sdf.global_field.list_instances,
+                         "the global field's instance lists are too long for the kernel's 32-bit indices; use a larger "
+                         "--global-voxel");
   }
   const char* hint = "a larger --global-voxel, a narrower --brick-band or --sdf-format f16/u8 need less";
   field_tables_ = BrickFieldTables(context_, field, sampler_, arrays.params, hint);
