@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "renderers/sdf/crossing_lists.h"
+#include "renderers/sdf/exact_hit.h"
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "renderers/sdf/triangle_distance.h"
 #include "scenes/mesh.h"
@@ -456,6 +458,29 @@ TEST(CheckSdfCommand, BadArgumentsAreClearErrors) {
     EXPECT_NE(r.output.find("sdfbench: error:"), std::string::npos) << args << "\n" << r.output;
     EXPECT_NE(r.output.find(words), std::string::npos) << args << "\n" << r.output;
   }
+}
+
+// A segment that starts at t = 0 on a cell wall and leaves the cell the point rounds into (a
+// shadow ray leaving its surface): the walk must move on to the cell it enters and find the
+// crossing beyond, not pick the cell behind again until kExactMaxCells runs out.
+TEST(ExactCrossing, SegmentStartingOnACellWallMovesOn) {
+  // A quad in the plane x = -0.5 and one at x = 1 (so the grid spans both); cells of 0.25, all
+  // coordinates multiples of 0.25 so that the walls are exact.
+  const Mesh mesh = make_mesh({{-0.5f, -1, -1}, {-0.5f, 1, -1}, {-0.5f, 1, 1}, {-0.5f, -1, 1},
+                               {1, -1, -1}, {1, 1, -1}, {1, 1, 1}, {1, -1, 1}},
+                              {{0, 1, 2}, {0, 2, 3}, {4, 6, 5}, {4, 7, 6}});
+  MeshGridParams params;
+  params.cell_size = 0.25f;
+  const MeshDistanceGrid grid = build_mesh_distance_grid(mesh, params);
+  const MeshCrossingLists lists = make_crossing_lists(grid, mesh);
+  const glm::vec3 o(grid.origin.x + 3.0f * grid.cell_size, 0.1f, 0.1f), d(-1, 0, 0);
+  // The precondition of the case: o rounds into the cell on the wall's +x side.
+  ASSERT_EQ(std::floor((o.x - grid.origin.x) / grid.cell_size), 3.0f);
+  Crossing crossing;
+  uint32_t tests = 0;
+  ASSERT_TRUE(exact_crossing(grid, lists, mesh, o, d, 0.0f, 10.0f, crossing, tests));
+  EXPECT_FLOAT_EQ(crossing.t, o.x + 0.5f);
+  EXPECT_LT(tests, 64u);  // a handful of cells, not kExactMaxCells visits of one
 }
 
 }  // namespace

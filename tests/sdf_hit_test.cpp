@@ -2,8 +2,9 @@
 // very close to a surface, a grazing view along a large flat panel, scales 0.001 and 1000 in one
 // scene, overlapping instances, a camera inside a box whose walls lie on hash-cell faces, and
 // thesis:bunny:1000 in whitted mode. Every SDF backend (sdf-bricks with either --brick-trace, and
-// sdf-global, whose field holds the camera in most of these scenes, with either --exact-lists),
-// primary and shadow, at the default `compare` thresholds; sdf-cpu is the reference of the kernels.
+// sdf-global, whose field holds the camera in most of these scenes, with either --exact-lists and
+// with --exact-span ray), primary and shadow, at the default `compare` thresholds; sdf-cpu is the
+// reference of the kernels.
 #include <cmath>
 #include <string>
 #include <utility>
@@ -33,7 +34,8 @@ const SdfVariant kSdfBackends[] = {{"sdf-cpu", {}},
                                    {"sdf-bricks", {{"brick_trace", "instance"}}},
                                    {"sdf-bricks", {{"brick_trace", "min"}}},
                                    {"sdf-global", {}},
-                                   {"sdf-global", {{"exact_lists", "triangles"}}}};
+                                   {"sdf-global", {{"exact_lists", "triangles"}}},
+                                   {"sdf-global", {{"exact_span", "ray"}}}};
 constexpr RenderMode kModes[] = {RenderMode::Primary, RenderMode::Shadow};
 constexpr uint32_t kGrazingSteps = 48;
 

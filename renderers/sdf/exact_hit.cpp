@@ -39,7 +39,9 @@ bool exact_crossing(const MeshDistanceGrid& grid, const MeshCrossingLists& lists
       }
     }
     if (found != kNone || t_exit >= t_end) break;
-    t_cell = std::max(t_exit, t_cell + 1e-6f * std::abs(t_cell));
+    // At least a ten-thousandth of a cell: a segment starting on a cell wall at t = 0 (a shadow
+    // ray leaving its surface) would otherwise pick the cell behind again and again.
+    t_cell = std::max(t_exit, t_cell + std::max(1e-6f * std::abs(t_cell), 1e-4f * grid.cell_size / glm::length(d)));
   }
   crossing.triangle = found;
   return found != kNone;

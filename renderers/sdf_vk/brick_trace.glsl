@@ -86,6 +86,9 @@ struct BrickHit {
 
 bool trace_bricks(Ray ray, float tmax, out BrickHit best);
 
+// Set while any_hit traces: a kernel may then stop at some crossing before tmax instead of the nearest.
+bool brick_any_hit = false;
+
 bool closest_hit(Ray ray, float tmax, out Hit hit) {
   BrickHit b;
   if (!trace_bricks(ray, tmax, b) || b.t >= tmax) return false;
@@ -118,7 +121,10 @@ float mesh_hit_tolerance() { return sdf.options.y; }
 
 bool any_hit(Ray ray, float tmax) {
   BrickHit b;
-  return trace_bricks(ray, tmax, b) && b.t < tmax;
+  brick_any_hit = true;
+  bool hit = trace_bricks(ray, tmax, b) && b.t < tmax;
+  brick_any_hit = false;
+  return hit;
 }
 
 #endif

@@ -61,7 +61,8 @@ bool exact_crossing_in_mesh(vec3 o, vec3 d, uint mesh, float t_lo, float t_hi, o
   // The segment inside the grid box (outside it the mesh has no triangle).
   float t_cell = t_lo, t_end = t_hi;
   clip_to_box(o, d, origin, origin + vec3(dims) * cell_size, t_cell, t_end);
-  for (uint visited = 0u; visited < SDF_EXACT_MAX_CELLS && t_cell <= t_end; ++visited) {
+  uint visited = 0u;
+  for (; visited < SDF_EXACT_MAX_CELLS && t_cell <= t_end; ++visited) {
     // Clamped: at the box's faces rounding can put the point a hair outside.
     uvec3 c = uvec3(clamp(floor((o + t_cell * d - origin) / cell_size), vec3(0.0f), vec3(dims - 1u)));
     vec3 cell_lo = origin + vec3(c) * cell_size;
@@ -86,8 +87,12 @@ bool exact_crossing_in_mesh(vec3 o, vec3 d, uint mesh, float t_lo, float t_hi, o
       }
     }
     if (triangle != SDF_NONE || t_exit >= t_end) break;
-    t_cell = max(t_exit, t_cell + 1e-6f * abs(t_cell));
+    // At least a ten-thousandth of a cell: a segment starting on a cell wall at t = 0 (a shadow
+    // ray leaving its surface) would otherwise pick the cell behind again and again.
+    t_cell = max(t_exit, t_cell + max(1e-6f * abs(t_cell), 1e-4f * cell_size / length(d)));
   }
+  // Out of cells with segment left: the pixel is cut short, never silently wrong.
+  if (triangle == SDF_NONE && visited == SDF_EXACT_MAX_CELLS && t_cell <= t_end) sdf_cut = true;
   return triangle != SDF_NONE;
 }
 

@@ -95,6 +95,51 @@ bool exact_in_brick(Ray ray, uint slot, float s0, float s1, inout BrickHit best)
   return found;
 }
 
+#ifdef GLOBAL_SPAN_RAY
+// --exact-span ray: each listed instance is tested once, over the rest of the ray (up to the
+// nearest crossing so far), the first time a near point's brick lists it; up to GLOBAL_TESTED_MAX
+// instances are remembered. A brick whose listed instances are all remembered holds no crossing
+// the ray has not found already, so it is passed whole (`whole`): the march never creeps onto a
+// tested surface. Instances beyond the memory are tested over the window [s0, s1] (as
+// --exact-span window), and their brick is not passed whole.
+#define GLOBAL_TESTED_MAX 8
+uint tested[GLOBAL_TESTED_MAX];
+uint tested_count;
+
+bool exact_listed_once(Ray ray, uint slot, float s0, float s1, inout BrickHit best, out bool whole) {
+  int begin = int(list_word(int(slot))), end = int(list_word(int(slot) + 1));
+  bool found = false;
+  whole = true;
+  for (int k = begin; k < end; ++k) {
+    uint i = list_word(k);
+    bool seen = false;
+    for (uint j = 0u; j < tested_count; ++j) seen = seen || tested[j] == i;
+    if (seen) continue;
+    float a = s0, b = best.t;
+    if (tested_count < GLOBAL_TESTED_MAX) {
+      tested[tested_count++] = i;
+    } else {
+      whole = false;
+      b = min(s1, best.t);
+    }
+    int record = int(i) * SDF_INSTANCE_TEXELS;
+    COUNT(COUNTER_AABB_TESTS, 1u);
+    clip_to_box(ray.origin, ray.dir, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
+                uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz), a, b);
+    if (a > b) continue;
+    COUNT(COUNTER_INSTANCE_EVALS, 1u);
+    float th;
+    uint triangle;
+    vec2 uv;
+    if (exact_crossing(ray, a, b, i, th, triangle, uv) && th < best.t) {
+      best = BrickHit(th, i, triangle, uv);
+      found = true;
+    }
+  }
+  return found;
+}
+#endif
+
 #ifdef BRICK_HIT_FIELD
 // The listed instance of stored brick `slot` whose box is nearest to p (the field does not say
 // whose surface it is; UE5 keeps a per-page object grid for this).
@@ -171,6 +216,33 @@ bool trace_bricks(Ray ray, float tmax, out BrickHit best) {
   return false;
 #elif defined(GLOBAL_REF_SPLIT)
   return trace_cells(ray, r, t, t1, t_start, best);
+#elif defined(GLOBAL_SPAN_RAY)
+  ray_steps = 0u;
+  tested_count = 0u;
+  bool found = false;
+  // Past the nearest crossing found so far nothing can be nearer: the segment shrinks to it.
+  while (t <= min(t1, best.t)) {
+    float t_end = min(t1, best.t);
+    FieldSample s;
+    if (!march_to_near(ray, r, t, t_end, s)) {
+      if (t <= t_end) {
+        COUNT(COUNTER_OUT_OF_STEPS, 1u);
+        return walk_bricks(ray, r.f, t, t_end, t_start, best) || found;
+      }
+      return found;
+    }
+    ++ray_steps;
+    float t_exit = brick_exit(ray, r.f, brick_at(r.f, ray.origin + t * ray.dir));
+    float t_window = max(min(min(t + max(BRICK_WINDOW_VOXELS * voxel, s.bound), t_exit), t_end), t + face_slack(ray, t));
+    bool whole;
+    if (exact_listed_once(ray, s.slot, max(t - BRICK_BEHIND_VOXELS * voxel, t_start), t_window + face_slack(ray, t_window),
+                          best, whole)) {
+      found = true;
+      if (brick_any_hit) return true;  // a shadow ray needs some crossing, not the nearest
+    }
+    t = whole ? max(t_exit, t + face_slack(ray, t)) : t_window;
+  }
+  return found;
 #else
   ray_steps = 0u;
   while (t <= t1) {

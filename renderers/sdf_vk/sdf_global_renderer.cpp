@@ -52,6 +52,8 @@ std::string kernel_defines(const BackendOptions& options, bool sampler) {
           << options.params.real("exact_window") << ")\n";
   if (options.params.text("hit") == "exact" && options.params.text("exact_lists") == "triangles")
     defines << "#define GLOBAL_REF_SPLIT " << options.params.integer("list_split") << "\n";
+  else if (options.params.text("hit") == "exact" && options.params.text("exact_span") == "ray")
+    defines << "#define GLOBAL_SPAN_RAY 1\n";
   return defines.str() + options.kernel_defines;
 }
 
@@ -156,6 +158,11 @@ BackendInfo sdf_global_backend() {
                          "--exact-lists triangles: reference cells per voxel and axis (finer cells, fewer triangles per set, "
                          "more cells)",
                          "sampled fields (sdf-bricks, sdf-global)", {}, 1, sdf::kMaxListSplit, false, "exact_lists", "triangles"});
+  info.params.push_back({"exact_span", ParamKind::Choice, "window",
+                         "--exact-lists instances: what one exact test of a listed instance covers: window (the next "
+                         "--exact-window voxels) or ray (the rest of the ray, once per instance; a brick whose instances "
+                         "are all tested is passed whole, so the march never creeps onto a tested surface)",
+                         "sampled fields (sdf-bricks, sdf-global)", {"window", "ray"}, 0, 0, false, "exact_lists", "instances"});
   info.params.push_back({"exact_near", ParamKind::Real, "0.5",
                          "--hit exact: the march hands over to the exact test where the field's bound falls below this "
                          "many voxels (smaller: more steps, fewer tests)",
