@@ -17,6 +17,7 @@
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "scenes/scene.h"
 #include "scenes/mesh.h"
+#include "scenes/mesh_file.h"
 #include "scenes/mesh_resize.h"
 #include "scenes/random.h"
 #include "scenes/sized_mesh.h"
@@ -59,8 +60,9 @@ Mesh load_mesh_argument(const std::string& text) {
                                                                kMaxResizedTriangles)));
   const std::filesystem::path path(text);
   if (!std::filesystem::is_regular_file(path))
-    throw Error("--mesh '" + text + "': neither a built-in mesh (bunny, teapot, monkey, sphere) nor an existing OBJ file");
-  Mesh mesh = load_obj(path, path.stem().string());
+    throw Error("--mesh '" + text + "': neither a built-in mesh (bunny, teapot, monkey, sphere) nor an existing mesh file (" +
+                mesh_file_extensions() + ")");
+  Mesh mesh = load_mesh_file(path, path.stem().string());
   check_coordinates(mesh, "--mesh '" + text + "'");  // as a scene file's meshes are (kMaxCoordinate)
   return mesh;
 }
@@ -276,7 +278,7 @@ void run_check_sdf(const CheckSdfArgs& args) {
 void register_check_sdf_command(CLI::App& app) {
   auto args = std::make_shared<CheckSdfArgs>();
   CLI::App* cmd = app.add_subcommand("check-sdf", "Check a mesh's exact distance grid against brute force over all triangles");
-  cmd->add_option("--mesh", args->mesh, "built-in mesh (bunny, teapot, monkey, sphere), one at a size (bunny@200000), or a path to an OBJ")->required();
+  cmd->add_option("--mesh", args->mesh, "built-in mesh (bunny, teapot, monkey, sphere), one at a size (bunny@200000), or a mesh file (.obj, .ply, .off, .gltf, .glb)")->required();
   cmd->add_option("--samples", args->samples, "sample points (40% in the grid box, 40% near the surface, 20% outside)")
       ->capture_default_str();
   cmd->add_option("--mesh-cell", args->mesh_cell, "grid cell size in mesh units (default: from --cells-per-extent)");

@@ -12,7 +12,7 @@ namespace sdfbench {
 
 struct Mesh {
   std::string name;
-  std::filesystem::path source;       // the OBJ it was read from
+  std::filesystem::path source;       // the file it was read from
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;      // per vertex, angle-weighted (same count as positions)
   std::vector<glm::uvec3> triangles;   // indices into positions, all checked in range

@@ -7,6 +7,7 @@
 
 #include "scenes/implicit_parser.h"
 #include "scenes/json_field.h"
+#include "scenes/mesh_file.h"
 #include "util/error.h"
 #include "util/image_codec.h"
 #include "util/input_file.h"
@@ -199,7 +200,7 @@ Scene build_scene(const nlohmann::ordered_json& doc, const std::filesystem::path
       if (path.is_relative()) path = base / path;
     }
     try {
-      scene.meshes.push_back(load_obj(path, it.key()));
+      scene.meshes.push_back(load_mesh_file(path, it.key()));
     } catch (const Error& e) {
       m.fail(e.what());
     }

@@ -18,6 +18,7 @@ packages=(
   libopenexr-dev libstb-dev libopenimageio-dev openimageio-tools
   libbenchmark-dev libgtest-dev
   libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libmeshoptimizer-dev libopenmesh-dev
+  libassimp-dev assimp-testmodels
   python3-matplotlib
   chromium
 )

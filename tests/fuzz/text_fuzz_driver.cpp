@@ -3,10 +3,12 @@
 // or meshes, and every input an earlier fuzz run found: those must never fail again), then
 // mutates random seeds with byte edits, splices and tokens that broke loaders before.
 //
-// usage: TARGET [--seconds S] [--seed N] [--ext .json] PATH...   (PATH: a file or a directory)
+// usage: TARGET [--seconds S] [--seed N|time] [--ext .json] PATH...   (PATH: a file or a directory;
+// --seed time: a new seed each run, printed, so that runs do not replay the same mutants)
 // Each input must be accepted or refused with sdfbench::Error (the target catches it); any
 // other exception fails the run, a crash or sanitizer report aborts it.
 #include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -18,14 +20,46 @@
 #include <string>
 #include <vector>
 
+#include <sanitizer/common_interface_defs.h>
+#include <unistd.h>
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
 
 namespace {
 
 namespace fs = std::filesystem;
 
+// The input being run, written to fuzz_failure<ext> in the working directory when the run dies
+// (a sanitizer report, an abort) or one input takes longer than kInputSeconds (a hang), so that
+// the failure can be replayed and kept as a regression seed.
+constexpr unsigned kInputSeconds = 10;
+const std::string* g_current = nullptr;
+std::string g_failure_file = "fuzz_failure";
+uint64_t g_seed = 1;
+
+void write_current() {
+  if (!g_current) return;
+  if (std::FILE* f = std::fopen(g_failure_file.c_str(), "wb")) {
+    std::fwrite(g_current->data(), 1, g_current->size(), f);
+    std::fclose(f);
+  }
+  std::fprintf(stderr, "fuzz driver (seed %llu): the failing input is in %s\n", static_cast<unsigned long long>(g_seed),
+               g_failure_file.c_str());
+}
+
+void on_alarm(int) {
+  static const char msg[] = "FAIL: one input ran past the fuzz driver's per-input time limit (a hang)\n";
+  (void)!write(2, msg, sizeof msg - 1);
+  write_current();
+  std::_Exit(1);
+}
+
 void run_one(const std::string& input) {
+  g_current = &input;
+  alarm(kInputSeconds);
   LLVMFuzzerTestOneInput(reinterpret_cast<const uint8_t*>(input.data()), input.size());
+  alarm(0);
+  g_current = nullptr;
 }
 
 std::string read(const fs::path& path) {
@@ -81,6 +115,8 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--seconds" && i + 1 < argc) seconds = std::atof(argv[++i]);
+    else if (arg == "--seed" && i + 1 < argc && std::string(argv[i + 1]) == "time" && ++i)
+      seed = static_cast<uint64_t>(std::chrono::system_clock::now().time_since_epoch().count());  // printed below
     else if (arg == "--seed" && i + 1 < argc) seed = std::strtoull(argv[++i], nullptr, 10);
     else if (arg == "--ext" && i + 1 < argc) ext = argv[++i];
     else if (fs::is_directory(arg)) {
@@ -90,6 +126,10 @@ int main(int argc, char** argv) {
       seeds.push_back(read(arg));
     }
   }
+  g_seed = seed;
+  g_failure_file = "fuzz_failure" + ext;
+  __sanitizer_set_death_callback(write_current);
+  std::signal(SIGALRM, on_alarm);
   if (seeds.empty()) {
     std::fprintf(stderr, "no seeds: the fuzz driver is broken\n");
     return 1;

@@ -1,0 +1,192 @@
+// Mesh files through assimp (scenes/mesh_file.*): PLY (ASCII and binary), OFF and glTF 2.0
+// (.gltf with an external buffer, .glb) load with their node transforms; hostile files are one
+// Error naming the file and the part at fault, before anything large is allocated; and the
+// Khronos models Debian ships (assimp-testmodels) render with every backend as Embree does.
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "harness/image_agreement.h"
+#include "renderers/backend_registry.h"
+#include "renderers/renderer.h"
+#include "scenes/mesh.h"
+#include "scenes/mesh_file.h"
+#include "scenes/scene_loader.h"
+#include "tests/test_support.h"
+#include "util/error.h"
+
+namespace sdfbench {
+namespace {
+
+const std::filesystem::path kSeeds = data_dir().parent_path() / "tests/fuzz/mesh_file_seeds";
+const std::filesystem::path kModels = "/usr/share/assimp/models";  // Debian's assimp-testmodels (install_deps.sh)
+
+TEST(MeshFile, EachFormatLoadsWithItsNodeTransforms) {
+  for (const char* file : {"cube.ply", "cube_binary.ply", "cube.off"}) {
+    const Mesh mesh = load_mesh_file(kSeeds / file, "cube");
+    EXPECT_EQ(mesh.triangle_count(), 12u) << file;
+    EXPECT_EQ(mesh.bounds.extent(), glm::vec3(1.0f)) << file;
+  }
+  // Two nodes place one cube: at x + 2, and scaled by a half at the origin.
+  for (const char* file : {"two_cubes.gltf", "two_cubes.glb"}) {
+    const Mesh mesh = load_mesh_file(kSeeds / file, "cubes");
+    EXPECT_EQ(mesh.triangle_count(), 24u) << file;
+    EXPECT_EQ(mesh.bounds.min, glm::vec3(0.0f)) << file;
+    EXPECT_EQ(mesh.bounds.max, glm::vec3(3.0f, 1.0f, 1.0f)) << file;
+  }
+  // The Khronos samples: an external .bin beside a .gltf, and a multi-node, multi-mesh .glb.
+  ASSERT_TRUE(std::filesystem::exists(kModels)) << "assimp-testmodels is not installed (harness/scripts/install_deps.sh)";
+  EXPECT_EQ(load_mesh_file(kModels / "glTF2/BoxTextured-glTF/BoxTextured.gltf", "box").triangle_count(), 12u);
+  EXPECT_EQ(load_mesh_file(kModels / "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "engine").triangle_count(),
+            121496u);
+  EXPECT_EQ(load_mesh_file(kModels / "PLY/Wuson.ply", "wuson").triangle_count(), 3732u);
+  EXPECT_EQ(load_mesh_file(kModels / "OFF/Wuson.off", "wuson").triangle_count(), 3732u);
+}
+
+// The seed's text with `from` replaced by `to` (the test fails if `from` is not there).
+std::string edited(const std::string& seed, const std::string& from, const std::string& to) {
+  std::ifstream in(kSeeds / seed, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << seed << " has no '" << from << "'";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+void expect_error(const std::filesystem::path& file, const std::string& part) {
+  try {
+    load_mesh_file(file, "hostile");
+    ADD_FAILURE() << file << " loaded; expected an error naming '" << part << "'";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+    EXPECT_NE(message.find(part), std::string::npos) << "expected '" << part << "' in: " << message;
+  }
+}
+
+TEST(MeshFile, HostileFilesAreErrorsNamingThePart) {
+  const test::TempDir dir;
+  const std::string cube_ply = edited("cube.ply", "", "");
+  // PLY: a truncated body, huge declared counts, a list count past its type, a digit-led name.
+  expect_error(dir.write("truncated.ply", cube_ply.substr(0, cube_ply.size() - 40)), "the file ends");
+  expect_error(dir.write("huge.ply", edited("cube.ply", "element vertex 8", "element vertex 4294967295")), "declares 4294967295");
+  expect_error(dir.write("list.ply", edited("cube.ply", "3 0 2 1", "300 0 2 1")), "list count '300'");
+  expect_error(dir.write("name.ply", edited("cube.ply", "element vertex", "element 18446744073709551615vertex")),
+               "element name");
+  // OFF: counts beyond the limit and beyond the file.
+  expect_error(dir.write("huge.off", edited("cube.off", "8 12 0", "353535235358 6 0")), "declares 353535235358 vertices");
+  expect_error(dir.write("short.off", edited("cube.off", "8 12 0", "8000 12000 0")), "truncated");
+  // glTF: accessor counts beyond the buffer, indices out of range, views past their buffer, cycles
+  // and shared children in the node graph, huge counts, buffers outside the folder, a cut .glb.
+  expect_error(dir.write("count.gltf", edited("two_cubes.gltf", "\"count\": 8", "\"count\": 80")),
+               "accessors[0]: 80 elements");
+  expect_error(dir.write("index.gltf", edited("two_cubes.gltf", "\"indices\": 1", "\"indices\": 7")),
+               "meshes[0].primitives[0].indices: 7 is out of range");
+  expect_error(dir.write("view.gltf", edited("two_cubes.gltf", "\"byteLength\": 72", "\"byteLength\": 720")),
+               "bufferViews[1]");
+  expect_error(dir.write("cycle.gltf", edited("two_cubes.gltf", "\"mesh\": 0,", "\"children\": [0], \"mesh\": 0,")),
+               "a cycle in the node graph");
+  expect_error(dir.write("shared.gltf", edited("two_cubes.gltf", "\"children\": [\n    1,\n    2\n   ]",
+                                               "\"children\": [\n    1,\n    1\n   ]")),
+               "already has a parent");
+  expect_error(dir.write("huge.gltf", edited("two_cubes.gltf", "\"count\": 36", "\"count\": 4294967295")),
+               "accessors[1].count: 4294967295 is outside");
+  expect_error(dir.write("escape.gltf", edited("two_cubes.gltf", "data:application/octet-stream;base64,", "../x.bin#")),
+               "buffers[0].uri");
+  expect_error(dir.write("absolute.gltf", edited("two_cubes.gltf", "data:application/octet-stream;base64,", "/etc/passwd#")),
+               "buffers[0].uri");
+  const std::string glb = edited("two_cubes.glb", "", "");
+  expect_error(dir.write("cut.glb", glb.substr(0, glb.size() / 2)), "truncated");
+  expect_error(dir.write("mesh.stl", "solid x\n"), "is not a mesh file sdfbench reads");
+}
+
+TEST(MeshFile, SceneCoordinatesAndTheCommandLine) {
+  const test::TempDir dir;
+  dir.write("far.ply", edited("cube.ply", "1 1 1\n", "1e30 1 1\n"));
+  dir.write("bad.ply", edited("cube.ply", "element vertex 8", "element vertex 9"));
+  const std::string scene = R"({"meshes": {"m": {"file": "FILE"}}, "instances": [{"mesh": "m"}],
+    "lights": [{"type": "directional", "direction": [0, 1, 0]}],
+    "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov_y": 45}})";
+  const auto with = [&](const std::string& file) {
+    std::string s = scene;
+    s.replace(s.find("FILE"), 4, file);
+    return s;
+  };
+  // 1e30 is a finite float, so the file loads; the scene's coordinate limit names the mesh.
+  try {
+    load_scene_file(dir.write("far.json", with("far.ply")).string());
+    ADD_FAILURE() << "a mesh at 1e30 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("meshes.m"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(load_scene_file(dir.write("ok.json", with(kSeeds.string() + "/cube.off")).string()).triangle_count(), 12u);
+  // On the command line: one error line, exit 1.
+  const test::CommandResult r =
+      test::run_sdfbench("render --scene " + dir.write("bad.json", with("bad.ply")).string() + " --backend embree --size 8x8 --frames 1");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_EQ(r.output.rfind("sdfbench: error: ", 0), 0u) << r.output;
+  EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << r.output;
+  EXPECT_NE(r.output.find("bad.ply"), std::string::npos) << r.output;
+}
+
+// The Khronos models (a multi-node, multi-mesh engine, the textured box with its external
+// buffer) and the PLY and OFF scans, side by side, each scaled to a unit: every backend draws
+// what Embree draws, primary and shadow.
+Scene khronos_scene() {
+  Scene scene;
+  scene.name = "khronos models";
+  scene.materials.push_back(Material{.name = "grey", .albedo = glm::vec3(0.7f)});
+  scene.lights.push_back(Light{.direction = glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f))});
+  const char* files[] = {"glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "glTF2/BoxTextured-glTF/BoxTextured.gltf",
+                         "PLY/Wuson.ply", "OFF/Wuson.off"};
+  float x = -3.3f;
+  for (const char* file : files) {
+    Mesh mesh = load_mesh_file(kModels / file, std::filesystem::path(file).stem().string());
+    const glm::vec3 e = mesh.bounds.extent();
+    Instance instance{.mesh = static_cast<uint32_t>(scene.meshes.size()), .material = 0};
+    instance.transform.scale = 2.0f / std::max({e.x, e.y, e.z});
+    instance.transform.translation = glm::vec3(x, 0.0f, 0.0f) - instance.transform.scale * mesh.bounds.center();
+    instance.transform.rotation = glm::angleAxis(0.6f, glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f)));
+    scene.meshes.push_back(std::move(mesh));
+    scene.instances.push_back(instance);
+    x += 2.2f;
+  }
+  scene.camera = Camera{.position = {0.0f, 0.5f, 4.6f}, .look_at = {0.0f, 0.0f, 0.0f}, .fov_y_degrees = 45.0f};
+  return scene;
+}
+
+class MeshFileBackends : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(MeshFileBackends, DrawWhatEmbreeDraws) {
+  ASSERT_TRUE(std::filesystem::exists(kModels)) << "assimp-testmodels is not installed (harness/scripts/install_deps.sh)";
+  const Scene scene = khronos_scene();
+  // Each of the four models shows (at least 1 % of the frame): agreement on sky proves nothing.
+  const FrameImages reference = test::render_frame("embree", scene, RenderMode::Primary, 128, 48);
+  std::vector<size_t> pixels(scene.instances.size(), 0);
+  for (uint32_t id : reference.instance_id)
+    if (id < pixels.size()) ++pixels[id];
+  for (size_t i = 0; i < pixels.size(); ++i) EXPECT_GE(pixels[i], 128u * 48u / 100u) << scene.meshes[i].name;
+  for (RenderMode mode : {RenderMode::Primary, RenderMode::Shadow})
+    test::expect_agrees_with_embree(GetParam(), scene, mode, 128, 48);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryBackend, MeshFileBackends, ::testing::ValuesIn([] {
+                           std::vector<std::string> names;
+                           for (const std::string& name : backend_names())
+                             if (name != "embree") names.push_back(name);
+                           return names;
+                         }()),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           for (char& c : name)
+                             if (c == '-') c = '_';
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace sdfbench
