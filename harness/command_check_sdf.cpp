@@ -18,6 +18,7 @@
 #include "scenes/scene.h"
 #include "scenes/mesh.h"
 #include "scenes/mesh_file.h"
+#include "scenes/named_mesh.h"
 #include "scenes/mesh_resize.h"
 #include "scenes/random.h"
 #include "scenes/sized_mesh.h"
@@ -53,14 +54,14 @@ float parse_positive(const std::string& text, const char* option, bool zero_ok) 
 }
 
 Mesh load_mesh_argument(const std::string& text) {
-  if (const auto builtin = builtin_mesh_path(text); !builtin.empty()) return load_obj(builtin, text);
+  if (is_mesh_name(text)) return load_named_mesh(text);
   if (const size_t at = text.find('@'); at != std::string::npos && !builtin_mesh_path(text.substr(0, at)).empty())
     return load_sized_mesh(text.substr(0, at),
                            static_cast<uint32_t>(parse_integer(text.substr(at + 1), "--mesh's triangle count", kMinResizedTriangles,
                                                                kMaxResizedTriangles)));
   const std::filesystem::path path(text);
   if (!std::filesystem::is_regular_file(path))
-    throw Error("--mesh '" + text + "': neither a built-in mesh (bunny, teapot, monkey, sphere) nor an existing mesh file (" +
+    throw Error("--mesh '" + text + "': neither a named mesh (" + mesh_names_text() + ") nor an existing mesh file (" +
                 mesh_file_extensions() + ")");
   Mesh mesh = load_mesh_file(path, path.stem().string());
   check_coordinates(mesh, "--mesh '" + text + "'");  // as a scene file's meshes are (kMaxCoordinate)
@@ -278,7 +279,7 @@ void run_check_sdf(const CheckSdfArgs& args) {
 void register_check_sdf_command(CLI::App& app) {
   auto args = std::make_shared<CheckSdfArgs>();
   CLI::App* cmd = app.add_subcommand("check-sdf", "Check a mesh's exact distance grid against brute force over all triangles");
-  cmd->add_option("--mesh", args->mesh, "built-in mesh (bunny, teapot, monkey, sphere), one at a size (bunny@200000), or a mesh file (.obj, .ply, .off, .gltf, .glb)")->required();
+  cmd->add_option("--mesh", args->mesh, "a thesis mesh (bunny, teapot, monkey, sphere), a scan (armadillo, ...: harness/scripts/fetch_scanned_meshes.sh), a thesis mesh at a size (bunny@200000), or a mesh file (.obj, .ply, .off, .gltf, .glb)")->required();
   cmd->add_option("--samples", args->samples, "sample points (40% in the grid box, 40% near the surface, 20% outside)")
       ->capture_default_str();
   cmd->add_option("--mesh-cell", args->mesh_cell, "grid cell size in mesh units (default: from --cells-per-extent)");

@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "harness/benchmark_json.h"
 #include "harness/cli_common.h"
 #include "harness/commands.h"
 #include "harness/markdown_report.h"
@@ -29,6 +30,10 @@ void add_run_options(CLI::App& command, RunOptions& o) {
       ->capture_default_str()->group(method);
   command.add_option("--csv", o.csv, "write one row per measurement (rewritten atomically after every row)")->group(out);
   command.add_option("--markdown", o.markdown, "write the markdown tables at the end")->group(out);
+  command.add_option("--json", o.json,
+                     "write the rows at the end as Google Benchmark JSON (for libbenchmark-tools' compare.py; "
+                     "docs/commands.md)")
+      ->group(out);
   command.add_option("--keep-images", o.keep_images,
                      "keep each row's check images in this folder (created if missing): the backend's frame, the "
                      "reference's and their difference map, PNG at --check-size; the CSV names them (for `sdfbench report`)")
@@ -69,7 +74,8 @@ RowTally tally_rows(const CsvTable& rows) {
 void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& options, const std::vector<NamedPath>& inputs) {
   const PlanOptions plan_options = options.plan();
   if (!options.markdown.empty()) check_output_path(options.markdown, "--markdown");
-  check_distinct_outputs({{"--csv", options.csv}, {"--markdown", options.markdown},
+  if (!options.json.empty()) check_output_path(options.json, "--json");
+  check_distinct_outputs({{"--csv", options.csv}, {"--markdown", options.markdown}, {"--json", options.json},
                           {"--cache", plan.empty() ? std::string() : plan.front().options.cache.path}},
                          inputs);
   RunOptions run = options;  // the kept images' folder, made ready before the first row
@@ -84,6 +90,10 @@ void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& opti
   BenchmarkRunner runner(run.settings);
   const CsvTable rows = run_plan(plan, runner, plan_options);
   write_markdown(options.markdown, rows);
+  if (!options.json.empty()) {
+    const std::string json = benchmark_json(rows);
+    write_file_atomically(options.json, std::as_bytes(std::span(json.data(), json.size())));
+  }
   std::cout << "\n" << markdown_report(rows, ThesisTables::load_default());
   // The exit status says what the rows say (docs/commands.md, "Tables, sweeps and their CSV").
   const RowTally tally = tally_rows(rows);

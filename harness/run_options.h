@@ -13,7 +13,7 @@ namespace sdfbench {
 
 struct RunOptions {
   BenchSettings settings;
-  std::string check_size = "320x180", shard = "1/1", csv, markdown, keep_images;
+  std::string check_size = "320x180", shard = "1/1", csv, markdown, json, keep_images;
   bool resume = false;
   PlanOptions plan() const;  // parses --shard
 };

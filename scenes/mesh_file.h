@@ -1,9 +1,9 @@
 #pragma once
-// A mesh from a file, by its format: Wavefront OBJ through the validating OBJ loader (mesh.h),
-// PLY, OFF and glTF 2.0 (.gltf, .glb) through assimp, each checked before assimp reads it
-// (mesh_file_check.h). A glTF file's meshes are placed by its node hierarchy (the default
-// scene's, else every root's) and merged into one mesh; its materials and cameras are not
-// read here. docs/limits.md lists the limits, docs/scenes.md what is mapped.
+// A mesh from a file, by its extension: Wavefront OBJ (.obj, or none) through the validating
+// OBJ loader (mesh.h); PLY, OFF and glTF 2.0 (.gltf, .glb) through assimp, each checked before
+// assimp reads it (mesh_file_check.h). A glTF file's meshes are placed by its node hierarchy and
+// merged into one mesh; its materials and cameras are not read here (gltf_scene.h reads a whole
+// scene). scenes/README.md lists what is read and the limits.
 #include <cstddef>
 #include <filesystem>
 #include <span>
@@ -25,5 +25,8 @@ Mesh parse_mesh_bytes(std::span<const std::byte> bytes, const std::string& forma
 
 // The extensions load_mesh_file reads, for messages: ".obj, .ply, .off, .gltf, .glb".
 const char* mesh_file_extensions();
+// A path's extension, lower case, without the dot ("glb"); the folder holding it (symlinks resolved).
+std::string mesh_file_format(const std::filesystem::path& path);
+std::filesystem::path containing_folder(const std::filesystem::path& path);
 
 }  // namespace sdfbench

@@ -270,7 +270,7 @@ class GltfCheck {
   GltfCheck(const nlohmann::json& root, uint64_t glb_bin_bytes, const std::string& where)
       : root_(root), glb_bin_bytes_(glb_bin_bytes), where_(where) {}
 
-  void run() {
+  std::vector<GltfPrimitive> run() {
     if (!root_.is_object()) fail("", "the JSON is not an object");
     const nlohmann::json* asset = find(root_, "asset");
     const nlohmann::json* version = asset && asset->is_object() ? find(*asset, "version") : nullptr;
@@ -283,12 +283,14 @@ class GltfCheck {
     const size_t nodes = check_nodes(meshes);
     check_scenes(nodes);
     check_images(views);
+    return std::move(primitives_);
   }
 
  private:
   [[noreturn]] void fail(const std::string& field, const std::string& what) const {
     throw Error(where_ + (field.empty() ? "" : ": " + field) + ": " + what);
   }
+  static std::string join(const std::string& field, const char* key) { return field.empty() ? key : field + "." + key; }
   static const nlohmann::json* find(const nlohmann::json& object, const char* key) {
     const auto it = object.find(key);
     return it == object.end() ? nullptr : &*it;
@@ -312,14 +314,14 @@ class GltfCheck {
       if (required) fail(field, "missing \"" + std::string(key) + "\"");
       return fallback;
     }
-    if (!v->is_number_unsigned()) fail(field + "." + key, "expected a non-negative integer");
+    if (!v->is_number_unsigned()) fail(join(field, key), "expected a non-negative integer");
     return v->get<uint64_t>();
   }
   uint64_t index(const nlohmann::json& object, const std::string& field, const char* key, size_t count,
                  const char* of) const {
     const uint64_t i = integer(object, field, key, true);
     if (i >= count)
-      fail(field + "." + key, std::to_string(i) + " is out of range (" + std::to_string(count) + " " + of + ")");
+      fail(join(field, key), std::to_string(i) + " is out of range (" + std::to_string(count) + " " + of + ")");
     return i;
   }
   // A relative path inside the file's folder, or a data: URI.
@@ -418,7 +420,7 @@ class GltfCheck {
     return accessors.size();
   }
 
-  size_t check_meshes(size_t accessors) const {
+  size_t check_meshes(size_t accessors) {
     const nlohmann::json& meshes = array("meshes");
     for (size_t i = 0; i < meshes.size(); ++i) {
       const std::string field = "meshes[" + std::to_string(i) + "]";
@@ -434,8 +436,11 @@ class GltfCheck {
         for (auto it = attributes->begin(); it != attributes->end(); ++it)
           index(*attributes, pfield + ".attributes", it.key().c_str(), accessors, "accessors");
         if (!find(*attributes, "POSITION")) fail(pfield + ".attributes", "no POSITION");
-        if (find(primitive, "indices")) index(primitive, pfield, "indices", accessors, "accessors");
-        if (integer(primitive, pfield, "mode", false, 4) > 6) fail(pfield + ".mode", "expected 0 to 6");
+        uint64_t corners = accessor_count_[index(*attributes, pfield + ".attributes", "POSITION", accessors, "accessors")];
+        if (find(primitive, "indices")) corners = accessor_count_[index(primitive, pfield, "indices", accessors, "accessors")];
+        const uint64_t mode = integer(primitive, pfield, "mode", false, 4);
+        if (mode > 6) fail(pfield + ".mode", "expected 0 to 6");
+        primitives_.push_back({pfield, mode == 4 ? static_cast<int64_t>(corners / 3) : -1});
       }
     }
     return meshes.size();
@@ -504,6 +509,7 @@ class GltfCheck {
   uint64_t glb_bin_bytes_;
   std::string where_;
   std::vector<uint64_t> buffer_bytes_, view_bytes_, view_stride_, accessor_count_;
+  std::vector<GltfPrimitive> primitives_;
 };
 
 uint32_t read_u32(std::span<const std::byte> bytes, size_t offset) {
@@ -514,7 +520,8 @@ uint32_t read_u32(std::span<const std::byte> bytes, size_t offset) {
 
 }  // namespace
 
-void check_gltf(std::span<const std::byte> file, bool binary, const std::string& where) {
+std::string_view gltf_json_text(std::span<const std::byte> file, bool binary, const std::string& where,
+                                uint64_t* bin_bytes_out) {
   std::string_view json_text = as_text(file);
   uint64_t bin_bytes = GltfCheck::kNoBin;
   if (binary) {
@@ -535,13 +542,20 @@ void check_gltf(std::span<const std::byte> file, bool binary, const std::string&
         throw Error(where + ": the binary chunk claims " + std::to_string(bin_bytes) + " bytes, more than the file holds (truncated?)");
     }
   }
+  if (bin_bytes_out) *bin_bytes_out = bin_bytes;
+  return json_text;
+}
+
+std::vector<GltfPrimitive> check_gltf(std::span<const std::byte> file, bool binary, const std::string& where) {
+  uint64_t bin_bytes = 0;
+  const std::string_view json_text = gltf_json_text(file, binary, where, &bin_bytes);
   nlohmann::json root;
   try {
     root = nlohmann::json::parse(json_text);
   } catch (const nlohmann::json::exception& e) {
     throw Error(where + ": not valid JSON: " + printable(e.what()));
   }
-  GltfCheck(root, bin_bytes, where).run();
+  return GltfCheck(root, bin_bytes, where).run();
 }
 
 }  // namespace sdfbench

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace sdfbench {
 
@@ -23,6 +25,16 @@ void check_off_header(std::span<const std::byte> file, const std::string& where)
 // A .gltf (JSON) or .glb (binary container) file: its JSON's buffers, views, accessors, meshes,
 // nodes and scenes. External buffers must be relative paths inside the file's folder; their
 // sizes are checked when they are read (mesh_file.cpp).
-void check_gltf(std::span<const std::byte> file, bool binary, const std::string& where);
+// Returns each mesh primitive (in file order) with the triangles its indices (or positions)
+// describe, so that the reader can tell when assimp drops some.
+struct GltfPrimitive {
+  std::string field;   // "meshes[2].primitives[0]"
+  int64_t triangles;   // -1: not a triangle list (strips, fans, points, lines)
+};
+std::vector<GltfPrimitive> check_gltf(std::span<const std::byte> file, bool binary, const std::string& where);
+// The JSON of a .gltf (the file) or .glb (its first chunk, the container's header checked);
+// `bin_bytes` gets the .glb's binary chunk size (~0 when there is none).
+std::string_view gltf_json_text(std::span<const std::byte> file, bool binary, const std::string& where,
+                                uint64_t* bin_bytes = nullptr);
 
 }  // namespace sdfbench

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "scenes/named_mesh.h"
 #include "scenes/random.h"
 #include "scenes/sized_mesh.h"
 #include "scenes/thesis_layout.h"
@@ -35,8 +36,8 @@ OverlapLayoutSpec parse_overlap_spec(const std::string& spec) {
     throw Error("scene '" + spec + "': expected overlap:<mesh>:<count>:<k>[:seed], e.g. overlap:bunny:1000:8");
   OverlapLayoutSpec result;
   result.mesh = parts[1];
-  if (builtin_mesh_path(result.mesh).empty())
-    throw Error("scene '" + spec + "': unknown mesh '" + result.mesh + "' (expected bunny, teapot, monkey or sphere)");
+  if (!is_mesh_name(result.mesh))
+    throw Error("scene '" + spec + "': unknown mesh '" + result.mesh + "' (expected " + mesh_names_text() + ")");
   const uint64_t count = parse_spec_integer(parts[2], spec, "count");
   if (count < 1 || count > kMaxThesisCount)
     throw Error("scene '" + spec + "': count must be between 1 and " + std::to_string(kMaxThesisCount));
@@ -54,7 +55,7 @@ Scene make_overlap_scene(const OverlapLayoutSpec& spec) {
   char k[32];
   std::snprintf(k, sizeof k, "%g", spec.overlap);
   scene.name = "overlap:" + spec.mesh + ":" + std::to_string(spec.count) + ":" + k + ":" + std::to_string(spec.seed);
-  scene.meshes.push_back(load_obj(builtin_mesh_path(spec.mesh), spec.mesh));
+  scene.meshes.push_back(load_named_mesh(spec.mesh));
   add_thesis_materials(scene);
   const Mesh& mesh = scene.meshes[0];
   const float mesh_radius = 0.5f * glm::length(mesh.bounds.extent());

@@ -8,6 +8,7 @@
 #include "scenes/implicit_parser.h"
 #include "scenes/json_field.h"
 #include "scenes/mesh_file.h"
+#include "scenes/named_mesh.h"
 #include "util/error.h"
 #include "util/image_codec.h"
 #include "util/input_file.h"
@@ -190,17 +191,19 @@ Scene build_scene(const nlohmann::ordered_json& doc, const std::filesystem::path
     if (!m.raw().is_object()) m.fail("expected an object with \"builtin\" or \"file\"");
     m.expect_object({"builtin", "file"});
     std::filesystem::path path;
+    std::string builtin;
     if (m.has("builtin") == m.has("file")) m.fail("give exactly one of \"builtin\" and \"file\"");
     if (m.has("builtin")) {
-      const std::string builtin = m.at("builtin").string();
-      path = builtin_mesh_path(builtin);
-      if (path.empty()) m.at("builtin").fail("unknown built-in mesh '" + builtin + "' (built in: bunny, teapot, monkey, sphere)");
+      builtin = m.at("builtin").string();
+      if (!is_mesh_name(builtin)) m.at("builtin").fail("unknown built-in mesh '" + builtin + "' (built in: " + mesh_names_text() + ")");
     } else {
       path = m.at("file").string();
       if (path.is_relative()) path = base / path;
     }
     try {
-      scene.meshes.push_back(load_mesh_file(path, it.key()));
+      Mesh mesh = builtin.empty() ? load_mesh_file(path, it.key()) : load_named_mesh(builtin);
+      mesh.name = it.key();
+      scene.meshes.push_back(std::move(mesh));
     } catch (const Error& e) {
       m.fail(e.what());
     }

@@ -1,5 +1,7 @@
 #include "scenes/scene_source.h"
 
+#include "scenes/gltf_scene.h"
+#include "scenes/mesh_file.h"
 #include "scenes/overlap_layout.h"
 #include "scenes/scene_loader.h"
 #include "scenes/thesis_layout.h"
@@ -9,6 +11,8 @@ namespace sdfbench {
 Scene load_scene(const std::string& spec) {
   if (spec.rfind("thesis:", 0) == 0) return make_thesis_scene(parse_thesis_spec(spec));
   if (spec.rfind("overlap:", 0) == 0) return make_overlap_scene(parse_overlap_spec(spec));
+  const std::string format = mesh_file_format(spec);
+  if (format == "gltf" || format == "glb") return load_gltf_scene(spec);
   return load_scene_file(spec);
 }
 

@@ -97,13 +97,6 @@ void write_cached(const std::filesystem::path& dir, const std::filesystem::path&
 
 }  // namespace
 
-std::filesystem::path mesh_cache_dir() {
-  if (const char* env = std::getenv("SDFBENCH_MESH_CACHE"); env && *env) return env;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::filesystem::path(xdg) / "sdfbench" / "meshes";
-  if (const char* home = std::getenv("HOME"); home && *home) return std::filesystem::path(home) / ".cache" / "sdfbench" / "meshes";
-  return {};
-}
-
 Mesh load_sized_mesh(const std::string& name, uint32_t triangles) {
   const std::filesystem::path source = builtin_mesh_path(name);
   if (source.empty()) throw Error("unknown mesh '" + name + "' (expected bunny, teapot, monkey or sphere)");

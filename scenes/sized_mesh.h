@@ -11,11 +11,9 @@
 #include <string>
 
 #include "scenes/mesh.h"
+#include "scenes/mesh_cache_dir.h"
 
 namespace sdfbench {
-
-// The cache folder (created on first use); empty when none can be named (no HOME).
-std::filesystem::path mesh_cache_dir();
 
 // Built-in mesh `name` ("bunny") at `triangles` (within kResizeTolerance). Prints a line on
 // stderr when it generates one. Throws Error like resize_mesh.

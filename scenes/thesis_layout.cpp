@@ -9,6 +9,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "scenes/mesh_resize.h"
+#include "scenes/named_mesh.h"
 #include "scenes/random.h"
 #include "scenes/sized_mesh.h"
 #include "util/error.h"
@@ -91,8 +92,11 @@ ThesisLayoutSpec parse_thesis_spec(const std::string& spec) {
       throw Error("scene '" + spec + "': triangle count must be between " + std::to_string(kMinResizedTriangles) + " and " +
                   std::to_string(kMaxResizedTriangles));
   }
-  if (builtin_mesh_path(result.mesh).empty())
-    throw Error("scene '" + spec + "': unknown mesh '" + result.mesh + "' (expected bunny, teapot, monkey or sphere)");
+  if (!is_mesh_name(result.mesh))
+    throw Error("scene '" + spec + "': unknown mesh '" + result.mesh + "' (expected " + mesh_names_text() + ")");
+  if (result.triangles && builtin_mesh_path(result.mesh).empty())
+    throw Error("scene '" + spec + "': a size (@" + std::to_string(result.triangles) + ") is made from a thesis mesh (" +
+                "bunny, teapot, monkey, sphere), not from a scan");
   result.count = parse_number<uint32_t>(parts[2], spec, "count");
   if (result.count < 1 || result.count > kMaxThesisCount)
     throw Error("scene '" + spec + "': count must be between 1 and " + std::to_string(kMaxThesisCount));
@@ -105,7 +109,7 @@ Scene make_thesis_scene(const ThesisLayoutSpec& spec) {
   std::string mesh_spec = spec.mesh;  // (appended: "@" + std::to_string(n) trips GCC 12's false -Wrestrict, bug 105651)
   if (spec.triangles) mesh_spec.append("@").append(std::to_string(spec.triangles));
   scene.name = "thesis:" + mesh_spec + ":" + std::to_string(spec.count) + ":" + std::to_string(spec.seed);
-  scene.meshes.push_back(spec.triangles ? load_sized_mesh(spec.mesh, spec.triangles) : load_obj(builtin_mesh_path(spec.mesh), spec.mesh));
+  scene.meshes.push_back(spec.triangles ? load_sized_mesh(spec.mesh, spec.triangles) : load_named_mesh(spec.mesh));
   add_thesis_materials(scene);
   const Mesh& mesh = scene.meshes[0];
   const float mesh_radius = 0.5f * glm::length(mesh.bounds.extent());

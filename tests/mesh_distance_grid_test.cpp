@@ -441,8 +441,8 @@ TEST(CheckSdfCommand, InconsistentOrientationFailsWithExitTwo) {
 
 TEST(CheckSdfCommand, BadArgumentsAreClearErrors) {
   const std::pair<std::string, std::string> cases[] = {
-      {"--mesh cube", "neither a built-in mesh"},
-      {"--mesh /nonexistent/x.obj", "neither a built-in mesh"},
+      {"--mesh cube", "neither a named mesh"},
+      {"--mesh /nonexistent/x.obj", "nor an existing mesh file"},
       {"--mesh sphere --samples 0", "--samples"},
       {"--mesh sphere --samples ten", "--samples"},
       {"--mesh sphere --mesh-cell -1", "--mesh-cell"},

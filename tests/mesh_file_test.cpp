@@ -10,11 +10,13 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "harness/image_agreement.h"
 #include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "scenes/mesh.h"
+#include "scenes/gltf_scene.h"
 #include "scenes/mesh_file.h"
 #include "scenes/scene_loader.h"
 #include "tests/test_support.h"
@@ -103,6 +105,16 @@ TEST(MeshFile, HostileFilesAreErrorsNamingThePart) {
   const std::string glb = edited("two_cubes.glb", "", "");
   expect_error(dir.write("cut.glb", glb.substr(0, glb.size() / 2)), "truncated");
   expect_error(dir.write("mesh.stl", "solid x\n"), "is not a mesh file sdfbench reads");
+  // assimp's own hostile glTF samples.
+  ASSERT_TRUE(std::filesystem::exists(kModels)) << "assimp-testmodels is not installed (harness/scripts/install_deps.sh)";
+  const std::filesystem::path gltf = kModels / "glTF2";
+  expect_error(gltf / "RecursiveNodes/RecursiveNodes.gltf", "a cycle in the node graph");
+  expect_error(gltf / "IndexOutOfRange/IndexOutOfRange.gltf",
+               "meshes[0].primitives[0]: 1 of 12 triangles have a vertex index out of range");
+  expect_error(gltf / "IncorrectVertexArrays/Cube.gltf", "bufferViews[2]: bytes 504 + 432 pass the end of buffers[0]");
+  expect_error(gltf / "BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "is not finite");
+  expect_error(gltf / "MissingBin/BoxTextured.gltf", "BoxTextured0.bin");
+  expect_error(gltf / "TestNoRootNode/NoScene.gltf", "scene: 0 is out of range (0 scenes)");
 }
 
 TEST(MeshFile, SceneCoordinatesAndTheCommandLine) {
@@ -158,6 +170,77 @@ Scene khronos_scene() {
   }
   scene.camera = Camera{.position = {0.0f, 0.5f, 4.6f}, .look_at = {0.0f, 0.0f, 0.0f}, .fov_y_degrees = 45.0f};
   return scene;
+}
+
+// --scene FILE.gltf|.glb: nodes become instances of shared meshes, the file's camera is the view
+// (else a framing), glTF materials map to the shading program's (scenes/README.md, "glTF scenes").
+TEST(GltfScene, NodesBecomeInstancesOfSharedMeshes) {
+  const Scene scene = load_gltf_scene(kSeeds / "two_cubes.gltf");
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  EXPECT_EQ(scene.meshes[0].triangle_count(), 12u);
+  ASSERT_EQ(scene.instances.size(), 2u);
+  EXPECT_EQ(scene.instances[0].transform.translation, glm::vec3(2, 0, 0));
+  EXPECT_FLOAT_EQ(scene.instances[0].transform.scale, 1.0f);
+  EXPECT_FLOAT_EQ(scene.instances[1].transform.scale, 0.5f);
+  // No camera in the file: a framing that looks at the box's centre from outside it.
+  EXPECT_EQ(scene.camera.look_at, scene.bounds().center());
+  EXPECT_GT(glm::length(scene.camera.position - scene.camera.look_at), glm::length(scene.bounds().extent()));
+  EXPECT_EQ(scene.lights.size(), 1u);  // the default sun
+}
+
+TEST(GltfScene, CameraMaterialsAndNonUniformScale) {
+  const test::TempDir dir;
+  nlohmann::json doc = nlohmann::json::parse(edited("two_cubes.gltf", "", ""));
+  doc["cameras"] = R"([{"type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1}}])"_json;
+  doc["materials"] = R"([{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1], "metallicFactor": 1,
+                                                   "roughnessFactor": 0}}])"_json;
+  doc["meshes"][0]["primitives"][0]["material"] = 0;
+  doc["nodes"][2]["scale"] = {1, 2, 1};
+  doc["nodes"].push_back(R"({"camera": 0, "translation": [0, 0, 10]})"_json);  // node 3, a root
+  doc["scenes"][0]["nodes"] = {3, 0};
+  const Scene scene = load_gltf_scene(dir.write("scene.gltf", doc.dump()));
+  EXPECT_EQ(scene.camera.position, glm::vec3(0, 0, 10));
+  EXPECT_EQ(scene.camera.look_at, glm::vec3(0, 0, 9));
+  EXPECT_NEAR(scene.camera.fov_y_degrees, 0.5 * 180 / 3.14159265, 1e-3);
+  ASSERT_FALSE(scene.instances.empty());
+  const Material& material = scene.materials.at(scene.instances[0].material);
+  EXPECT_EQ(material.albedo, glm::vec3(1, 0, 0));
+  EXPECT_FLOAT_EQ(material.reflectance, 1.0f);
+  // The node scaled (1, 2, 1) is baked into a mesh of its own; the other stays an instance.
+  ASSERT_EQ(scene.meshes.size(), 2u);
+  EXPECT_EQ(scene.meshes[1].bounds.extent(), glm::vec3(1, 2, 1));
+  ASSERT_EQ(scene.instances.size(), 2u);
+  EXPECT_EQ(scene.instances[1].mesh, 1u);
+  EXPECT_FLOAT_EQ(scene.instances[1].transform.scale, 1.0f);
+}
+
+TEST(GltfScene, TheKhronosEngineRendersAsEmbreeDoesOnTheCommandLine) {
+  ASSERT_TRUE(std::filesystem::exists(kModels)) << "assimp-testmodels is not installed (harness/scripts/install_deps.sh)";
+  const std::filesystem::path engine = kModels / "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+  const Scene scene = load_gltf_scene(engine);
+  EXPECT_LT(scene.meshes.size(), scene.instances.size()) << "meshes used by several nodes are shared";
+  // The instances' transforms (decomposed node matrices) put the parts where the merged mesh
+  // (the full matrices applied to the vertices) has them.
+  const Aabb merged = load_mesh_file(engine, "engine").bounds;
+  Aabb placed;
+  for (const Instance& instance : scene.instances)
+    for (const glm::vec3& p : scene.meshes[instance.mesh].positions)
+      placed.extend(glm::vec3(instance.transform.object_to_world() * glm::vec4(p, 1.0f)));
+  const float tolerance = 1e-4f * glm::length(merged.extent());
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(placed.min[axis], merged.min[axis], tolerance) << axis;
+    EXPECT_NEAR(placed.max[axis], merged.max[axis], tolerance) << axis;
+  }
+  for (const char* backend : {"bvh", "sdf-global"}) {
+    const test::CommandResult r = test::run_sdfbench("compare --scene " + engine.string() + " --backends " + backend +
+                                                     " --size 96x54");
+    EXPECT_EQ(r.exit_code, 0) << backend << ": " << r.output;
+  }
+  const test::CommandResult bad = test::run_sdfbench("render --scene " + (kModels / "glTF2/RecursiveNodes/RecursiveNodes.gltf").string() +
+                                                     " --backend embree --size 8x8");
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_EQ(bad.output.rfind("sdfbench: error: glTF scene '", 0), 0u) << bad.output;
+  EXPECT_EQ(bad.output.find('\n'), bad.output.size() - 1) << bad.output;
 }
 
 class MeshFileBackends : public ::testing::TestWithParam<std::string> {};

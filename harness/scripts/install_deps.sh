@@ -19,6 +19,7 @@ packages=(
   libbenchmark-dev libgtest-dev
   libcli11-dev nlohmann-json3-dev libtinyobjloader-dev libmeshoptimizer-dev libopenmesh-dev
   libassimp-dev assimp-testmodels
+  libbenchmark-tools python3-scipy
   python3-matplotlib
   chromium
 )

@@ -1,0 +1,99 @@
+#include "harness/benchmark_json.h"
+
+#include <charconv>
+#include <cmath>
+#include <ctime>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "harness/measurement.h"
+
+namespace sdfbench {
+namespace {
+
+// The numeric columns that become counters (when the row has a finite value).
+const char* const kCounters[] = {"mrays_per_s", "fps", "rays_per_pixel", "steps_per_ray", "instance_evals_per_ray",
+                                 "triangle_evals_per_ray", "aabb_tests_per_ray", "triangle_tests_per_ray",
+                                 "out_of_steps_per_ray", "field_samples_per_ray", "cell_sets_per_ray", "prepare_ms",
+                                 "build_ms", "structure_bytes", "hit_agreement", "id_agreement", "psnr", "depth_p99",
+                                 "depth_p99_voxels", "overlap", "frames", "load_avg", "cpu_steal_pct"};
+
+bool number(const std::string& text, double& value) {
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return !text.empty() && ec == std::errc() && end == text.data() + text.size() && std::isfinite(value);
+}
+
+std::string field(const CsvTable& rows, size_t row, const char* column) {
+  return rows.has_column(column) ? rows.rows[row][rows.column(column)] : std::string();
+}
+
+}  // namespace
+
+std::string benchmark_json(const CsvTable& rows) {
+  // Beyond scene/backend/mode/size, the key columns whose values differ between rows name them.
+  std::vector<size_t> varying;
+  for (const std::string& name : configuration_key_columns()) {
+    if (!rows.has_column(name) || name == "scene" || name == "backend" || name == "mode" || name == "width" || name == "height")
+      continue;
+    const size_t c = rows.column(name);
+    for (const auto& row : rows.rows)
+      if (row[c] != rows.rows.front()[c]) {
+        varying.push_back(c);
+        break;
+      }
+  }
+  nlohmann::ordered_json doc;
+  char host[256] = {};
+  gethostname(host, sizeof host - 1);
+  auto& context = doc["context"];
+  char date[32] = {};
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  context["date"] = date;
+  context["host_name"] = host;
+  context["executable"] = "sdfbench";
+  context["num_cpus"] = std::thread::hardware_concurrency();
+  context["mhz_per_cpu"] = 0;
+  context["cpu_scaling_enabled"] = false;
+  context["caches"] = nlohmann::ordered_json::array();
+  context["library_build_type"] = "release";
+  for (const char* c : {"device", "driver", "cpu", "threads", "embree", "commit", "run_id"})
+    if (!rows.rows.empty()) context[std::string("sdfbench_") + c] = field(rows, 0, c);
+  auto& benchmarks = doc["benchmarks"] = nlohmann::ordered_json::array();
+  for (size_t r = 0; r < rows.rows.size(); ++r) {
+    std::string name = field(rows, r, "scene") + "/" + field(rows, r, "backend") + "/" + field(rows, r, "mode") + "/" +
+                       field(rows, r, "width") + "x" + field(rows, r, "height");
+    for (size_t c : varying) name += "/" + rows.columns[c] + ":" + rows.rows[r][c];
+    nlohmann::ordered_json b;
+    b["name"] = name;
+    b["family_index"] = r;
+    b["per_family_instance_index"] = 0;
+    b["run_name"] = name;
+    b["run_type"] = "iteration";
+    b["repetitions"] = 1;
+    b["repetition_index"] = 0;
+    b["threads"] = 1;
+    double ms = 0.0, frames = 0.0;
+    if (!number(field(rows, r, "ms_median"), ms)) {
+      b["error_occurred"] = true;
+      b["error_message"] = field(rows, r, "agreement");
+      benchmarks.push_back(std::move(b));
+      continue;
+    }
+    b["iterations"] = number(field(rows, r, "frames"), frames) ? static_cast<uint64_t>(frames) : 0;
+    b["real_time"] = ms;
+    b["cpu_time"] = ms;  // no CPU time is measured (see the header)
+    b["time_unit"] = "ms";
+    for (const char* counter : kCounters)
+      if (double v = 0.0; number(field(rows, r, counter), v)) b[counter] = v;
+    b["agreement"] = field(rows, r, "agreement");
+    benchmarks.push_back(std::move(b));
+  }
+  return doc.dump(2) + "\n";
+}
+
+}  // namespace sdfbench
