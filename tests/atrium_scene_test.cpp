@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include "renderers/backend_registry.h"
 #include "scenes/atrium_scene.h"
 #include "scenes/scene_source.h"
 #include "tests/test_support.h"
@@ -53,18 +52,8 @@ TEST_P(AtriumBackends, DrawWhatEmbreeDraws) {
     test::expect_agrees_with_embree(GetParam(), scene, mode, 96, 54);
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryBackend, AtriumBackends, ::testing::ValuesIn([] {
-                           std::vector<std::string> names;
-                           for (const std::string& name : backend_names())
-                             if (name != "embree") names.push_back(name);
-                           return names;
-                         }()),
-                         [](const auto& info) {
-                           std::string name = info.param;
-                           for (char& c : name)
-                             if (c == '-') c = '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(EveryBackend, AtriumBackends, ::testing::ValuesIn(test::backends_but_the_reference()),
+                         [](const auto& info) { return test::backend_test_name(info.param); });
 
 }  // namespace
 }  // namespace sdfbench

@@ -13,7 +13,6 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/image_agreement.h"
-#include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "scenes/mesh.h"
 #include "scenes/gltf_scene.h"
@@ -258,18 +257,8 @@ TEST_P(MeshFileBackends, DrawWhatEmbreeDraws) {
     test::expect_agrees_with_embree(GetParam(), scene, mode, 128, 48);
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryBackend, MeshFileBackends, ::testing::ValuesIn([] {
-                           std::vector<std::string> names;
-                           for (const std::string& name : backend_names())
-                             if (name != "embree") names.push_back(name);
-                           return names;
-                         }()),
-                         [](const auto& info) {
-                           std::string name = info.param;
-                           for (char& c : name)
-                             if (c == '-') c = '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(EveryBackend, MeshFileBackends, ::testing::ValuesIn(test::backends_but_the_reference()),
+                         [](const auto& info) { return test::backend_test_name(info.param); });
 
 }  // namespace
 }  // namespace sdfbench

@@ -92,4 +92,18 @@ std::vector<MeshMode> thesis_meshes_in_every_mode() {
 
 std::string mesh_mode_name(const MeshMode& m) { return std::string(m.mesh) + "_" + to_string(m.mode); }
 
+std::vector<std::string> backends_but_the_reference() {
+  std::vector<std::string> names;
+  for (const std::string& name : backend_names())
+    if (name != "embree") names.push_back(name);
+  return names;
+}
+
+std::string backend_test_name(const std::string& backend) {
+  std::string name = backend;
+  for (char& c : name)
+    if (c == '-') c = '_';
+  return name;
+}
+
 }  // namespace sdfbench::test

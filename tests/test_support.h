@@ -44,6 +44,11 @@ FrameImages render_frame(const std::string& backend, const Scene& scene, RenderM
 void expect_agrees_with_embree(const std::string& backend, const Scene& scene, RenderMode mode, uint32_t width,
                                uint32_t height);
 
+// Every registered backend but the reference (embree), for tests parameterised by backend, and
+// a test-name suffix for each ("sdf-global" -> "sdf_global").
+std::vector<std::string> backends_but_the_reference();
+std::string backend_test_name(const std::string& backend);
+
 // Every thesis mesh in every mode, for parameterised tests.
 struct MeshMode {
   const char* mesh;
