@@ -9,6 +9,7 @@
 #include "harness/thesis_tables.h"
 #include "scenes/mesh.h"
 #include "scenes/mesh_resize.h"
+#include "scenes/named_mesh.h"
 #include "util/error.h"
 
 namespace sdfbench {
@@ -55,7 +56,9 @@ std::vector<BenchConfig> table_plan(const TableArgs& args) {
   }
   const std::vector<std::string> meshes = split_list(args.meshes, "--meshes");
   for (const std::string& mesh : meshes)
-    if (builtin_mesh_path(mesh).empty()) throw Error("--meshes: '" + mesh + "' is not a thesis mesh (bunny, teapot, monkey, sphere)");
+    if (!is_mesh_name(mesh)) throw Error("--meshes: '" + mesh + "' is not a mesh name (" + mesh_names_text() + ")");
+    else if (!args.triangles.empty() && builtin_mesh_path(mesh).empty())
+      throw Error("--meshes: '" + mesh + "' is a scan: --triangles resizes the thesis meshes only");
   // --triangles: every mesh at each size (thesis:<mesh>@<n>:<count>), the mesh-size axis.
   std::vector<std::string> mesh_specs;
   for (const std::string& mesh : meshes) {
@@ -137,7 +140,7 @@ void register_table_command(CLI::App& app) {
                   "meshes x objects x --overlap, primary mode unless --mode")
       ->capture_default_str();
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT (default 1280x720, the thesis'; --quick: 160x90)");
-  cmd->add_option("--meshes", args->meshes, "thesis meshes")->capture_default_str();
+  cmd->add_option("--meshes", args->meshes, "meshes: the thesis' four, or scans fetched by harness/scripts/fetch_scanned_meshes.sh (stanford-bunny, armadillo, dragon, elephant, bunny00)")->capture_default_str();
   cmd->add_option("--objects", args->objects, "object counts (default 1,10,100,1000; --table overlap: 1000; --quick: 1,10,100 and 100)");
   cmd->add_option("--overlap", args->overlap,
                   "--table overlap: the k of its scenes, boxes over each point, 1..64 (default 1,2,4,8,16,32,50; --quick: 1,4,16)");

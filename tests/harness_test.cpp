@@ -303,7 +303,7 @@ TEST(SweepCommand, StorageTablesAreAnAxis) {
 
 TEST(TableCommand, BadArgumentsAreClearErrors) {
   const std::pair<std::string, std::string> cases[] = {
-      {"table --meshes cube", "not a thesis mesh"},
+      {"table --meshes cube", "not a mesh name"},
       {"table --objects 1,x", "--objects"},
       {"table --backends embree,raytracer", "unknown backend"},
       {"table --shard 3/2", "--shard"},
@@ -335,7 +335,7 @@ TEST(TableCommand, BadArgumentsAreClearErrors) {
       {"table --table overlap --overlap 2,2.0", "--overlap '2,2.0': '2.0' is listed twice (as '2')"},
       {"table --table overlap --overlap 1,x", "--overlap '1,x': 'x' is not a non-negative number"},
       {"table --table overlap --triangles 1000", "--triangles: the overlap table's scenes"},
-      {"table --table overlap --meshes cube", "not a thesis mesh"},
+      {"table --table overlap --meshes cube", "not a mesh name"},
       {"table --table 6.4", "--table '6.4': expected 6.1, 6.2, 6.3, all or overlap"},
       {"sweep --scene thesis:sphere:1 --backend sdf-cpu --overlap 1,2",
        "--overlap varies the k of an overlap:<mesh>:<count>:<k> scene; --scene 'thesis:sphere:1' is not one"},
