@@ -130,19 +130,18 @@ Scene make_atrium_scene(const AtriumSpec& spec) {
       Material{.name = "dark stone", .albedo = {0.35f, 0.33f, 0.32f}},
   };
   enum { kStone, kMarble, kBronze, kMirror, kGlass, kDark };
-  auto add = [&](Mesh mesh, uint32_t material, glm::vec3 at = glm::vec3(0.0f), float yaw = 0.0f) {
-    scene.meshes.push_back(std::move(mesh));
-    Instance instance{.mesh = static_cast<uint32_t>(scene.meshes.size() - 1), .material = material};
-    instance.transform.translation = at;
-    instance.transform.rotation = glm::angleAxis(glm::radians(yaw), glm::vec3(0, 1, 0));
-    scene.instances.push_back(instance);
-    return instance.mesh;
-  };
   auto instance = [&](uint32_t mesh, uint32_t material, glm::vec3 at, float yaw = 0.0f) {
     Instance i{.mesh = mesh, .material = material};
     i.transform.translation = at;
     i.transform.rotation = glm::angleAxis(glm::radians(yaw), glm::vec3(0, 1, 0));
     scene.instances.push_back(i);
+  };
+  // A new mesh and its first instance.
+  auto add = [&](Mesh mesh, uint32_t material, glm::vec3 at = glm::vec3(0.0f)) {
+    scene.meshes.push_back(std::move(mesh));
+    const auto id = static_cast<uint32_t>(scene.meshes.size() - 1);
+    instance(id, material, at);
+    return id;
   };
   // The hall: 40 x 14 x 24 (x from -20 to 20, z from -12 to 12), walls 0.6 thick.
   const float hx = 20.0f, hz = 12.0f, height = 14.0f, t = 0.6f;

@@ -81,7 +81,7 @@ bool ply_name(std::string_view name) {
   return true;
 }
 
-bool ply_signed(std::string_view type) { return type == "char" || type == "short" || type == "int" || type.rfind("int", 0) == 0; }
+bool ply_signed(std::string_view type) { return type == "char" || type == "short" || type.rfind("int", 0) == 0; }
 
 // The largest item count a list's count type can say (and that a reader should loop for).
 uint64_t ply_count_limit(const PlyProperty& p) {

@@ -72,26 +72,27 @@ bool march_to_near(Ray ray, InstanceRay r, inout float t, float t1, out FieldSam
 
 // The earliest exact crossing over [s0, s1] of the instances stored brick `slot` lists (every
 // instance whose surface comes within kListSlackVoxels of the brick); keeps it in `best`.
+// Instance i's earliest crossing with the ray over [a, b] (clipped to its box), kept in `best`
+// when nearer.
+bool exact_instance(Ray ray, uint i, float a, float b, inout BrickHit best) {
+  int record = int(i) * SDF_INSTANCE_TEXELS;
+  COUNT(COUNTER_AABB_TESTS, 1u);
+  clip_to_box(ray.origin, ray.dir, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
+              uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz), a, b);
+  if (a > b) return false;
+  COUNT(COUNTER_INSTANCE_EVALS, 1u);
+  float th;
+  uint triangle;
+  vec2 uv;
+  if (!exact_crossing(ray, a, b, i, th, triangle, uv) || th >= best.t) return false;
+  best = BrickHit(th, i, triangle, uv);
+  return true;
+}
+
 bool exact_in_brick(Ray ray, uint slot, float s0, float s1, inout BrickHit best) {
   int begin = int(list_word(int(slot))), end = int(list_word(int(slot) + 1));
   bool found = false;
-  for (int k = begin; k < end; ++k) {
-    uint i = list_word(k);
-    int record = int(i) * SDF_INSTANCE_TEXELS;
-    float a = s0, b = min(s1, best.t);
-    COUNT(COUNTER_AABB_TESTS, 1u);
-    clip_to_box(ray.origin, ray.dir, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
-                uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz), a, b);
-    if (a > b) continue;
-    COUNT(COUNTER_INSTANCE_EVALS, 1u);
-    float th;
-    uint triangle;
-    vec2 uv;
-    if (exact_crossing(ray, a, b, i, th, triangle, uv) && th < best.t) {
-      best = BrickHit(th, i, triangle, uv);
-      found = true;
-    }
-  }
+  for (int k = begin; k < end; ++k) found = exact_instance(ray, list_word(k), s0, min(s1, best.t), best) || found;
   return found;
 }
 
@@ -115,26 +116,14 @@ bool exact_listed_once(Ray ray, uint slot, float s0, float s1, inout BrickHit be
     bool seen = false;
     for (uint j = 0u; j < tested_count; ++j) seen = seen || tested[j] == i;
     if (seen) continue;
-    float a = s0, b = best.t;
+    float b = best.t;
     if (tested_count < GLOBAL_TESTED_MAX) {
       tested[tested_count++] = i;
     } else {
       whole = false;
       b = min(s1, best.t);
     }
-    int record = int(i) * SDF_INSTANCE_TEXELS;
-    COUNT(COUNTER_AABB_TESTS, 1u);
-    clip_to_box(ray.origin, ray.dir, uintBitsToFloat(SDF_FETCH(instance_records, record).xyz),
-                uintBitsToFloat(SDF_FETCH(instance_records, record + 1).xyz), a, b);
-    if (a > b) continue;
-    COUNT(COUNTER_INSTANCE_EVALS, 1u);
-    float th;
-    uint triangle;
-    vec2 uv;
-    if (exact_crossing(ray, a, b, i, th, triangle, uv) && th < best.t) {
-      best = BrickHit(th, i, triangle, uv);
-      found = true;
-    }
+    found = exact_instance(ray, i, s0, b, best) || found;
   }
   return found;
 }
