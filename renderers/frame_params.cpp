@@ -75,10 +75,12 @@ ShadingInputs make_shading_inputs(const Scene& scene, const FrameRequest& reques
     g.albedo = vec4(m.albedo, m.checker_size);
     g.checker_albedo = vec4(m.checker_albedo, 0.0f);
     g.optics = vec4(m.reflectance, m.transmission, m.ior, 0.0f);
+    g.image_texture.w = shading::NO_UV_TABLE_VALUE;
     if (m.texture != Material::kNoTexture) {
       const Texture& t = scene.textures[m.texture];
       g.checker_albedo.w = m.texture_size;
-      g.image_texture = glm::uvec4(t.first_texel, t.width, t.height, 0u);
+      g.image_texture = glm::uvec4(t.first_texel, t.width, t.height,
+                                   m.triangle_uvs == Material::kNoTexture ? shading::NO_UV_TABLE_VALUE : m.triangle_uvs);
     }
     in.materials.push_back(g);
   }

@@ -52,7 +52,8 @@ class ConfinedIOSystem : public Assimp::IOSystem {
 
 }  // namespace
 
-void append_triangles(const aiMesh& m, const aiMatrix4x4& world, Mesh& mesh, const std::string& where) {
+void append_triangles(const aiMesh& m, const aiMatrix4x4& world, Mesh& mesh, const std::string& where,
+                      std::vector<glm::vec2>* uv) {
   if (mesh.positions.size() + m.mNumVertices > kMaxMeshFileVertices)
     throw Error(where + ": more than " + std::to_string(kMaxMeshFileVertices) + " vertices once its nodes place its meshes");
   const auto base = static_cast<uint32_t>(mesh.positions.size());
@@ -62,6 +63,12 @@ void append_triangles(const aiMesh& m, const aiMatrix4x4& world, Mesh& mesh, con
       throw Error(where + ": mesh '" + printable(m.mName.C_Str()) + "' vertex " + std::to_string(v) +
                   " is not finite (where its node places it)");
     mesh.positions.emplace_back(p.x, p.y, p.z);
+    if (!uv) continue;
+    const aiVector3D t = m.HasTextureCoords(0) ? m.mTextureCoords[0][v] : aiVector3D();
+    if (!(std::abs(t.x) <= kMaxTextureCoordinate && std::abs(t.y) <= kMaxTextureCoordinate))
+      throw Error(where + ": mesh '" + printable(m.mName.C_Str()) + "' vertex " + std::to_string(v) +
+                  ": its texture coordinate is not a finite number within +-" + std::to_string(int(kMaxTextureCoordinate)));
+    uv->emplace_back(t.x, t.y);
   }
   // Polygons become fans (the files' polygons are convex: quads of scans and CAD meshes); points
   // and lines have nothing to hit.

@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
@@ -32,6 +33,13 @@ AssimpFile import_checked(std::span<const std::byte> bytes, const std::string& f
 
 // The triangles of `mesh` (polygons as fans, points and lines skipped, every index checked),
 // transformed by `m`, appended to `out`, within kMaxMeshFileVertices / kMaxMeshFileTriangles.
-void append_triangles(const aiMesh& mesh, const aiMatrix4x4& m, Mesh& out, const std::string& where);
+// With `uv`: the first texture coordinate set per vertex appended too (zeros where the mesh has
+// none), each finite and within kMaxTextureCoordinate.
+void append_triangles(const aiMesh& mesh, const aiMatrix4x4& m, Mesh& out, const std::string& where,
+                      std::vector<glm::vec2>* uv = nullptr);
+
+// The largest texture coordinate accepted: beyond it a float uv no longer resolves a texel of a
+// 16384-texel image.
+inline constexpr float kMaxTextureCoordinate = 1e3f;
 
 }  // namespace sdfbench

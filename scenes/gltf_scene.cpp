@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <optional>
 #include <vector>
 
+#include <assimp/IOStream.hpp>
+#include <assimp/IOSystem.hpp>
 #include <assimp/material.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -13,6 +17,7 @@
 #include "scenes/assimp_file.h"
 #include "scenes/mesh_file.h"
 #include "scenes/mesh_file_check.h"
+#include "scenes/scene_texture.h"
 #include "util/error.h"
 #include "util/input_file.h"
 
@@ -28,7 +33,8 @@ glm::mat4 to_glm(const aiMatrix4x4& m) {
 // glTF's base colour factor, metallic-roughness and transmission as the shading program's
 // materials: albedo = base colour (linear, as glTF stores it); a mirror weight only for smooth
 // metal, reflectance = metallic x (1 - roughness); transmission and ior from
-// KHR_materials_transmission and KHR_materials_ior. Textures are not read (meshes carry no uv).
+// KHR_materials_transmission and KHR_materials_ior. The base colour texture is read by
+// Textures below.
 Material to_material(const aiMaterial& m, size_t index) {
   Material material;
   aiString name;
@@ -126,12 +132,81 @@ Camera framing(const Aabb& box) {
   return c;
 }
 
+// The materials' base colour textures (the glTF's baseColorTexture, else a diffuse texture),
+// each decoded once into the scene's texel table when a mesh with texture coordinates uses it:
+// an image embedded in a .glb or a data URI, or a file inside the .gltf's folder (read through
+// the importer's confined file system).
+class Textures {
+ public:
+  Textures(const AssimpFile& file, const std::string& where) : file_(file), where_(where) {}
+
+  // The texture index of material `index`'s base colour image in `scene`, or none.
+  std::optional<uint32_t> of(unsigned index, Scene& scene) {
+    const aiMaterial& m = *file_.scene->mMaterials[index];
+    aiString path;
+    if (m.GetTexture(aiTextureType_BASE_COLOR, 0, &path) != AI_SUCCESS &&
+        m.GetTexture(aiTextureType_DIFFUSE, 0, &path) != AI_SUCCESS)
+      return std::nullopt;
+    const std::string name = path.C_Str();
+    if (const auto it = loaded_.find(name); it != loaded_.end()) return it->second;
+    const std::string what = where_ + ": material '" + scene.materials[index].name + "': base colour texture '" + printable(name) + "'";
+    std::vector<std::byte> bytes;
+    if (const aiTexture* embedded = file_.scene->GetEmbeddedTexture(name.c_str())) {
+      if (embedded->mHeight != 0) throw Error(what + ": an uncompressed embedded image (only PNG, JPEG and the other image files are read)");
+      const auto* data = reinterpret_cast<const std::byte*>(embedded->pcData);
+      bytes.assign(data, data + embedded->mWidth);
+    } else {
+      std::unique_ptr<Assimp::IOStream> stream(file_.importer->GetIOHandler()->Open(name.c_str(), "rb"));
+      if (!stream) throw Error(what + ": not a readable file inside the scene's folder");
+      bytes.resize(stream->FileSize());
+      if (stream->Read(bytes.data(), 1, bytes.size()) != bytes.size()) throw Error(what + ": cannot read it");
+    }
+    try {
+      scene.textures.push_back(add_texture(bytes, name, "image '" + printable(name) + "'", scene));
+    } catch (const Error& e) {
+      throw Error(what + ": " + e.what());
+    }
+    return loaded_[name] = static_cast<uint32_t>(scene.textures.size() - 1);
+  }
+
+ private:
+  const AssimpFile& file_;
+  const std::string& where_;
+  std::map<std::string, uint32_t> loaded_;
+};
+
 struct Builder {
   const aiScene& ai;
   const std::string& where;
   Scene& scene;
-  std::vector<int64_t> mesh_of;  // aiMesh -> scene mesh (-1: no triangles)
+  Textures textures;
+  std::vector<int64_t> mesh_of;      // aiMesh -> scene mesh (-1: no triangles)
+  std::vector<uint32_t> material_of;  // aiMesh -> scene material
   size_t triangles = 0;
+
+  // The scene mesh of aiMesh `m`'s triangles, transformed by `world`, and the material its
+  // instances use: a textured one of its own (its uv table) when its material has a base colour
+  // texture and the mesh texture coordinates, else the file's material.
+  std::pair<Mesh, uint32_t> make_mesh(unsigned m, const aiMatrix4x4& world, std::string name) {
+    const aiMesh& source = *ai.mMeshes[m];
+    Mesh mesh;
+    mesh.name = std::move(name);
+    count(source);
+    const std::optional<uint32_t> texture =
+        source.HasTextureCoords(0) ? textures.of(source.mMaterialIndex, scene) : std::nullopt;
+    std::vector<glm::vec2> uv;
+    append_triangles(source, world, mesh, where, texture ? &uv : nullptr);
+    if (world.Determinant() < 0.0f)
+      for (glm::uvec3& t : mesh.triangles) std::swap(t.y, t.z);  // a mirror keeps the faces' winding
+    if (!texture || mesh.triangles.empty()) return {std::move(mesh), source.mMaterialIndex};
+    Material material = scene.materials[source.mMaterialIndex];
+    material.name += " on " + mesh.name;
+    material.texture = *texture;
+    material.texture_size = 1.0f;
+    material.triangle_uvs = add_triangle_uvs(mesh, uv, where + ": mesh '" + printable(mesh.name) + "'", scene);
+    scene.materials.push_back(std::move(material));
+    return {std::move(mesh), static_cast<uint32_t>(scene.materials.size() - 1)};
+  }
 
   // Instances of the node's meshes: a world matrix of rotation, uniform scale and translation is
   // an instance of the shared mesh; anything else (shear, non-uniform or negative scale) is
@@ -145,7 +220,7 @@ struct Builder {
       if (mesh_of[m] < 0) continue;
       if (scene.instances.size() == kMaxInstances)
         throw Error(where + ": more than " + std::to_string(kMaxInstances) + " mesh instances");
-      Instance instance{.mesh = static_cast<uint32_t>(mesh_of[m]), .material = ai.mMeshes[m]->mMaterialIndex};
+      Instance instance{.mesh = static_cast<uint32_t>(mesh_of[m]), .material = material_of[m]};
       aiVector3D scaling, position;
       aiQuaternion rotation;
       world.Decompose(scaling, rotation, position);
@@ -155,14 +230,11 @@ struct Builder {
         instance.transform.rotation = glm::normalize(glm::quat(rotation.w, rotation.x, rotation.y, rotation.z));
         instance.transform.scale = (lo + hi) / 2;
       } else {
-        Mesh baked;
-        baked.name = scene.meshes[static_cast<size_t>(mesh_of[m])].name + " (node " + printable(node.mName.C_Str()) + ")";
+        auto [baked, material] =
+            make_mesh(m, world, scene.meshes[static_cast<size_t>(mesh_of[m])].name + " (node " + printable(node.mName.C_Str()) + ")");
         baked.source = scene.meshes[static_cast<size_t>(mesh_of[m])].source;
-        count(*ai.mMeshes[m]);
-        append_triangles(*ai.mMeshes[m], world, baked, where);
-        if (world.Determinant() < 0.0f)
-          for (glm::uvec3& t : baked.triangles) std::swap(t.y, t.z);  // a mirror keeps the faces' winding
         finish_mesh(baked);
+        instance.material = material;
         instance.mesh = static_cast<uint32_t>(scene.meshes.size());
         scene.meshes.push_back(std::move(baked));
       }
@@ -192,18 +264,18 @@ Scene load_gltf_scene(const std::filesystem::path& path) {
   scene.name = path.string();
   for (unsigned i = 0; i < ai.mNumMaterials; ++i) scene.materials.push_back(to_material(*ai.mMaterials[i], i));
   if (scene.materials.empty()) scene.materials.push_back(Material{.name = "default"});
-  Builder builder{ai, where, scene, std::vector<int64_t>(ai.mNumMeshes, -1)};
+  const size_t file_materials = scene.materials.size();
+  Builder builder{ai, where, scene, Textures(file, where), std::vector<int64_t>(ai.mNumMeshes, -1),
+                  std::vector<uint32_t>(ai.mNumMeshes, 0)};
   for (unsigned m = 0; m < ai.mNumMeshes; ++m) {
-    if (ai.mMeshes[m]->mMaterialIndex >= scene.materials.size())
+    if (ai.mMeshes[m]->mMaterialIndex >= file_materials)
       throw Error(where + ": mesh '" + printable(ai.mMeshes[m]->mName.C_Str()) + "' names a material that does not exist");
-    Mesh mesh;
-    mesh.name = ai.mMeshes[m]->mName.length ? ai.mMeshes[m]->mName.C_Str() : "mesh " + std::to_string(m);
+    auto [mesh, material] = builder.make_mesh(m, aiMatrix4x4(), ai.mMeshes[m]->mName.length ? ai.mMeshes[m]->mName.C_Str() : "mesh " + std::to_string(m));
     mesh.source = path;
-    builder.count(*ai.mMeshes[m]);
-    append_triangles(*ai.mMeshes[m], aiMatrix4x4(), mesh, where);
     if (mesh.triangles.empty()) continue;  // points or lines only
     finish_mesh(mesh);
     builder.mesh_of[m] = static_cast<int64_t>(scene.meshes.size());
+    builder.material_of[m] = material;
     scene.meshes.push_back(std::move(mesh));
   }
   builder.place(*ai.mRootNode, aiMatrix4x4(), 0);

@@ -25,6 +25,10 @@ struct Material {
   static constexpr uint32_t kNoTexture = 0xffffffffu;
   uint32_t texture = kNoTexture;  // index into Scene::textures
   float texture_size = 1.0f;
+  // With an image texture on a glTF mesh: the first texel, in Scene::texels, of that mesh's
+  // per-triangle texture coordinates (scene_texture.h), which then replace the hit's uv. A
+  // material with a table is used by instances of that one mesh only.
+  uint32_t triangle_uvs = kNoTexture;
   float reflectance = 0.0f;   // mirror weight, used by whitted mode
   float transmission = 0.0f;  // refraction weight, used by whitted mode
   float ior = 1.5f;

@@ -9,6 +9,7 @@
 #include "scenes/json_field.h"
 #include "scenes/mesh_file.h"
 #include "scenes/named_mesh.h"
+#include "scenes/scene_texture.h"
 #include "util/error.h"
 #include "util/image_codec.h"
 #include "util/input_file.h"
@@ -29,47 +30,15 @@ uint32_t lookup(const JsonField& field, const std::map<std::string, uint32_t>& n
   field.fail("unknown " + std::string(section) + " '" + name + "' (declared: " + (known.empty() ? "none" : known) + ")");
 }
 
-// Texels become linear RGBA floats, all of a scene's in one GPU texel buffer: 16 Mi of them
-// (4096 x 4096, 256 MiB) stay far inside lavapipe's 128 Mi-element texel buffers and memory. The
-// header's width x height is checked against it before any pixel is decoded (a 296 KB PNG can
-// declare 16384 x 16384).
-constexpr uint64_t kMaxSceneTexels = 1ull << 24;
-constexpr uint64_t kMaxImageFileBytes = 256ull << 20;
-
-// Decodes an image into Scene::texels as linear RGBA: integer formats are display-encoded, so
-// gamma 2.2 is undone (the inverse of the image encoding); float formats are taken as linear.
-// Grey images fill rgb; alpha is ignored. The codecs read the bytes from memory: the file itself
-// was opened by read_input_bytes (a FIFO or /dev/zero is refused, not read for ever).
+// An image file of a `texture` material, decoded into Scene::texels (scene_texture.h); a failure
+// is an error of the field. The codecs read the bytes from memory: the file itself was opened by
+// read_input_bytes (a FIFO or /dev/zero is refused, not read for ever).
 Texture load_texture(const JsonField& field, const std::filesystem::path& path, Scene& scene) {
-  const std::string name = "image '" + path.string() + "'";
-  // A failure to read becomes an error of this field.
-  const auto named = [&](auto&& read) {
-    try {
-      return read();
-    } catch (const Error& e) {
-      field.fail(e.what());
-    }
-  };
-  const std::vector<std::byte> bytes = named([&] { return read_input_bytes(path, "image", kMaxImageFileBytes); });
-  const ImageHeader header = named([&] { return read_image_header(bytes, name); });
-  if (header.width > kMaxImageSide || header.height > kMaxImageSide)
-    field.fail(name + " must have sides between 1 and " + std::to_string(kMaxImageSide));
-  const uint64_t texels = uint64_t(header.width) * uint64_t(header.height);
-  if (scene.texels.size() + texels > kMaxSceneTexels)
-    field.fail(name + " is " + std::to_string(header.width) + "x" + std::to_string(header.height) + " texels" +
-               (scene.texels.empty() ? "" : " (plus " + std::to_string(scene.texels.size()) + " in other textures)") +
-               ", more than the " + std::to_string(kMaxSceneTexels) + " texels a scene may hold (4096x4096, " +
-               describe_bytes(kMaxSceneTexels * sizeof(glm::vec4)) + " as RGBA floats)");
-  const DecodedImage image = named([&] { return decode_image(bytes, name); });
-  const uint32_t channels = image.header.channels;
-  Texture texture{path, static_cast<uint32_t>(scene.texels.size()), image.header.width, image.header.height};
-  for (size_t i = 0; i < image.pixels.size(); i += channels) {
-    const float* p = &image.pixels[i];
-    glm::vec3 rgb = channels >= 3 ? glm::vec3(p[0], p[1], p[2]) : glm::vec3(p[0]);  // grey (+ alpha) or RGB(A)
-    if (!image.linear) rgb = glm::pow(glm::max(rgb, 0.0f), glm::vec3(2.2f));
-    scene.texels.emplace_back(rgb, 1.0f);
+  try {
+    return add_texture(read_input_bytes(path, "image", kMaxImageFileBytes), path, "image '" + path.string() + "'", scene);
+  } catch (const Error& e) {
+    field.fail(e.what());
   }
-  return texture;
 }
 
 Material parse_material(const JsonField& f, const std::string& name, const std::filesystem::path& base, Scene& scene) {

@@ -4,9 +4,12 @@
 // Khronos models Debian ships (assimp-testmodels) render with every backend as Embree does.
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -146,20 +149,26 @@ TEST(MeshFile, SceneCoordinatesAndTheCommandLine) {
 }
 
 // The Khronos models (a multi-node, multi-mesh engine, the textured box with its external
-// buffer) and the PLY and OFF scans, side by side, each scaled to a unit: every backend draws
+// buffer and image, textured) and the PLY and OFF scans, side by side, each scaled to a unit: every backend draws
 // what Embree draws, primary and shadow.
 Scene khronos_scene() {
   Scene scene;
   scene.name = "khronos models";
   scene.materials.push_back(Material{.name = "grey", .albedo = glm::vec3(0.7f)});
   scene.lights.push_back(Light{.direction = glm::normalize(glm::vec3(0.4f, 1.0f, 0.3f))});
+  // The textured box comes as its glTF scene has it: its base colour texture on its uv.
+  Scene box = load_gltf_scene(kModels / "glTF2/BoxTextured-glTF/BoxTextured.gltf");
+  scene.materials.push_back(box.materials.at(box.instances.at(0).material));
+  scene.textures = box.textures;
+  scene.texels = box.texels;
   const char* files[] = {"glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "glTF2/BoxTextured-glTF/BoxTextured.gltf",
                          "PLY/Wuson.ply", "OFF/Wuson.off"};
   float x = -3.3f;
   for (const char* file : files) {
-    Mesh mesh = load_mesh_file(kModels / file, std::filesystem::path(file).stem().string());
+    const bool textured = std::string(file).find("BoxTextured") != std::string::npos;
+    Mesh mesh = textured ? box.meshes.at(0) : load_mesh_file(kModels / file, std::filesystem::path(file).stem().string());
     const glm::vec3 e = mesh.bounds.extent();
-    Instance instance{.mesh = static_cast<uint32_t>(scene.meshes.size()), .material = 0};
+    Instance instance{.mesh = static_cast<uint32_t>(scene.meshes.size()), .material = textured ? 1u : 0u};
     instance.transform.scale = 2.0f / std::max({e.x, e.y, e.z});
     instance.transform.translation = glm::vec3(x, 0.0f, 0.0f) - instance.transform.scale * mesh.bounds.center();
     instance.transform.rotation = glm::angleAxis(0.6f, glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f)));
@@ -211,6 +220,104 @@ TEST(GltfScene, CameraMaterialsAndNonUniformScale) {
   ASSERT_EQ(scene.instances.size(), 2u);
   EXPECT_EQ(scene.instances[1].mesh, 1u);
   EXPECT_FLOAT_EQ(scene.instances[1].transform.scale, 1.0f);
+}
+
+// The base colour texture on the mesh's texture coordinates: the same from an external image, a
+// .glb and a data URI; the uv table holds the file's coordinates (v up, as assimp gives them),
+// and the texture shows in the image.
+TEST(GltfScene, BaseColourTextureOnTheMeshUv) {
+  ASSERT_TRUE(std::filesystem::exists(kModels)) << "assimp-testmodels is not installed (harness/scripts/install_deps.sh)";
+  const std::filesystem::path box = kModels / "glTF2/BoxTextured-glTF/BoxTextured.gltf";
+  const Scene scene = load_gltf_scene(box);
+  ASSERT_EQ(scene.instances.size(), 1u);
+  const Material& material = scene.materials.at(scene.instances[0].material);
+  ASSERT_EQ(scene.textures.size(), 1u);
+  EXPECT_EQ(material.texture, 0u);
+  EXPECT_EQ(scene.textures[0].width, 211u);  // CesiumLogoFlat.png
+  EXPECT_EQ(scene.textures[0].height, 211u);
+  ASSERT_EQ(material.triangle_uvs, 211u * 211u);  // after the image's texels, two per triangle
+  ASSERT_EQ(scene.texels.size(), 211u * 211u + 2u * 12u);
+  // The first face, vertices 0, 1, 2: the file's uv (6, 0), (5, 0), (6, 1) with v flipped.
+  EXPECT_EQ(scene.texels[material.triangle_uvs], glm::vec4(6, 1, 5, 1));
+  EXPECT_NEAR(scene.texels[material.triangle_uvs + 1].x, 6.0f, 1e-6f);
+  EXPECT_NEAR(scene.texels[material.triangle_uvs + 1].y, 0.0f, 1e-6f);
+  for (const char* other : {"BoxTextured-glTF-Binary/BoxTextured.glb", "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
+    const Scene same = load_gltf_scene(kModels / "glTF2" / other);
+    EXPECT_EQ(same.texels, scene.texels) << other;
+  }
+  // A known answer: the world's +z face (the mesh's -y face, turned by the root node) seen head on
+  // shows the logo mirrored left to right (its u runs from 1 at x = -0.5 to 0 at x = 0.5) and
+  // upright; the sun, the sky and a hill at their places in the image.
+  {
+    Scene head_on = scene;
+    head_on.camera = Camera{.position = {0, 0, 3}, .look_at = {0, 0, 0}, .fov_y_degrees = 24.0f};
+    const uint32_t side = 100;
+    const FrameImages image = test::render_frame("embree", head_on, RenderMode::Primary, side, side);
+    const auto at = [&](float u, float v) {  // the pixel showing the image's point (u, v), from its top left
+      const float tan_half = std::tan(glm::radians(12.0f)), x = 0.5f - u, y = 0.5f - v;
+      const auto px = uint32_t((x / (2.5f * tan_half) + 1.0f) / 2.0f * side), py = uint32_t((1.0f - y / (2.5f * tan_half)) / 2.0f * side);
+      return glm::vec3(image.color.at(py * side + px));
+    };
+    const glm::vec3 sun = at(138.0f / 211, 60.0f / 211), sky = at(0.3f, 0.3f), hill = at(0.5f, 0.85f);
+    EXPECT_LT(std::abs(sun.x - sun.z), 0.05f) << "white sun";
+    EXPECT_GT(sun.x, sky.x + 0.1f);
+    EXPECT_GT(sky.z, sky.x + 0.1f) << "blue sky";
+    EXPECT_GT(hill.y, hill.z + 0.1f) << "green hill";
+  }
+  // Drawn: the box's pixels take many colours (the logo), against a handful without the texture.
+  Scene plain = scene;
+  plain.materials.at(scene.instances[0].material).texture = Material::kNoTexture;
+  const auto colours = [](const Scene& s) {
+    const FrameImages image = test::render_frame("embree", s, RenderMode::Primary, 96, 72);
+    std::set<std::tuple<int, int, int>> seen;
+    for (size_t i = 0; i < image.color.size(); ++i)
+      if (image.instance_id[i] == 0)
+        seen.emplace(int(image.color[i].x * 16), int(image.color[i].y * 16), int(image.color[i].z * 16));
+    return seen.size();
+  };
+  EXPECT_GT(colours(scene), 3 * colours(plain));
+  // Hostile: an image outside the folder, one that declares 8000 x 8000, texture coordinates
+  // that are not finite.
+  const test::TempDir dir;
+  std::filesystem::copy_file(box.parent_path() / "BoxTextured0.bin", dir.path() / "BoxTextured0.bin");
+  const std::string text = [&] {
+    std::ifstream in(box, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  }();
+  const auto with_image = [&](const std::string& uri) {
+    std::string t = text;
+    t.replace(t.find("CesiumLogoFlat.png"), std::string("CesiumLogoFlat.png").size(), uri);
+    return t;
+  };
+  const auto expect_scene_error = [](const std::filesystem::path& file, const std::string& part) {
+    try {
+      load_gltf_scene(file);
+      ADD_FAILURE() << file << " loaded; expected an error naming '" << part << "'";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << "expected '" << part << "' in: " << e.what();
+      EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
+    }
+  };
+  expect_scene_error(dir.write("escape.gltf", with_image("../CesiumLogoFlat.png")),
+                     "images[0].uri: '../CesiumLogoFlat.png' is not a plain relative path");
+  const unsigned char header[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                                  0, 0, 0x1f, 0x40, 0, 0, 0x1f, 0x40, 8, 2, 0, 0, 0, 0, 0, 0, 0};  // 8000 x 8000 RGB
+  const std::string huge_png(reinterpret_cast<const char*>(header), sizeof header);
+  dir.write("huge.png", huge_png);
+  expect_scene_error(dir.write("huge.gltf", with_image("huge.png")), "base colour texture 'huge.png': image 'huge.png' is 8000x8000 texels, more than the 16777216");
+  const nlohmann::json doc = nlohmann::json::parse(text);
+  const nlohmann::json& uv = doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"].get<size_t>()];
+  const size_t at = doc["bufferViews"][uv["bufferView"].get<size_t>()].value("byteOffset", 0u) + uv.value("byteOffset", 0u);
+  for (const float bad : {std::nanf(""), 1e30f}) {
+    const test::TempDir copy;
+    std::filesystem::copy_file(box, copy.path() / "BoxTextured.gltf");
+    std::filesystem::copy_file(box.parent_path() / "CesiumLogoFlat.png", copy.path() / "CesiumLogoFlat.png");
+    std::ifstream in(box.parent_path() / "BoxTextured0.bin", std::ios::binary);
+    std::string bin((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::memcpy(bin.data() + at + 4, &bad, sizeof bad);  // vertex 0's v
+    copy.write("BoxTextured0.bin", bin);
+    expect_scene_error(copy.path() / "BoxTextured.gltf", "vertex 0: its texture coordinate is not a finite number within +-1000");
+  }
 }
 
 TEST(GltfScene, TheKhronosEngineRendersAsEmbreeDoesOnTheCommandLine) {

@@ -20,6 +20,7 @@ namespace sdfbench::shading {
 inline constexpr uint32_t NO_INSTANCE_VALUE = NO_INSTANCE;
 inline constexpr uint32_t FLOOR_INSTANCE_VALUE = FLOOR_INSTANCE;
 inline constexpr uint32_t CUT_TRAVERSAL_BOUND_BIT = CUT_TRAVERSAL_BOUND;
+inline constexpr uint32_t NO_UV_TABLE_VALUE = NO_UV_TABLE;
 
 // One pixel's work in an instrumented frame, indexed by COUNTER_* (the CPU tracers add to it).
 using PixelCounts = std::array<uint32_t, COUNTER_KINDS>;

@@ -90,6 +90,16 @@ vec3 image_texel(GpuMaterial m, vec2 uv) {
   return mix(top, bottom, f.y);
 }
 
+// The uv a hit's material is textured by: a glTF mesh's texture coordinates interpolated at the
+// hit's barycentrics (its material's uv table, two texels per triangle of the mesh), else the
+// hit's own uv (barycentrics on meshes, the floor's x and z, the implicit objects' uv).
+vec2 surface_uv(Hit hit) {
+  uint table = materials[hit.material].image_texture.w;
+  if (!has_textures() || table == NO_UV_TABLE || hit.instance == FLOOR_INSTANCE) return hit.uv;
+  vec4 a = texel_at(table + 2u * hit.prim), b = texel_at(table + 2u * hit.prim + 1u);
+  return (1.0f - hit.uv.x - hit.uv.y) * vec2(a.x, a.y) + hit.uv.x * vec2(a.z, a.w) + hit.uv.y * vec2(b.x, b.y);
+}
+
 // Albedo, or the checker's second colour on odd squares; times the image texture if any.
 vec3 surface_albedo(uint material, vec2 uv) {
   GpuMaterial m = materials[material];
@@ -207,7 +217,7 @@ void trace_ray(PathEntry e, INOUT(PixelState) s, INOUT(PixelAov) aov) {
     }
     vec3 w = weight * local;
     if (max_component(w) >= ENERGY_CUTOFF)
-      s.color += vec4(w * direct_light(p, n, magnitude, tolerance, surface_albedo(hit.material, hit.uv), s.counters.y), 0.0f);
+      s.color += vec4(w * direct_light(p, n, magnitude, tolerance, surface_albedo(hit.material, surface_uv(hit)), s.counters.y), 0.0f);
     // The limit also bounds the stack (STACK_SIZE), whatever frame.limits holds.
     if (shading_mode() == MODE_WHITTED && e.origin.w < float(min(frame.limits.x, MAX_DEPTH_LIMIT))) {
       float depth = e.origin.w + 1.0f;

@@ -44,6 +44,7 @@
 
 #define NO_INSTANCE 0xffffffffu     // the ray escaped to the sky
 #define FLOOR_INSTANCE 0xfffffffeu  // the analytic floor plane, shared by every backend
+#define NO_UV_TABLE 0xffffffffu     // GpuMaterial.image_texture.w: the hit's own uv
 
 // Implicit objects (thesis 5.1, figure 6.5): a CSG tree per object, flattened to postfix nodes
 // (renderers/implicit_tables.cpp), evaluated by implicit_trace.glsl. Kinds as ImplicitKind in
@@ -65,7 +66,8 @@ struct GpuMaterial {
   vec4 albedo;          // rgb albedo; w: checker square size in uv units (0: no checker)
   vec4 checker_albedo;  // rgb: the checker's second colour; w: image texture repeat in uv units (0: none)
   vec4 optics;          // x: reflectance, y: transmission, z: index of refraction
-  uvec4 image_texture;  // x: first texel in the texel table, y: width, z: height
+  uvec4 image_texture;  // x: first texel in the texel table, y: width, z: height; w: the mesh's
+                        // per-triangle uv table in the texel table (NO_UV_TABLE: none)
 };
 
 struct GpuLight {
