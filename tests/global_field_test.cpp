@@ -299,6 +299,9 @@ TEST(SdfGlobal, OptionsOfOtherBackendsAreUserErrors) {
            {"render --backend sdf-global --voxels 32" + small, "--voxels is a parameter of sdf-bricks"},
            {"render --backend sdf-global --global-voxel 0" + small, "--global-voxel"},
            {"render --backend sdf-global --global-voxel 0.00001" + small, "--global-voxel"},
+           // 2^26 bricks: refused before their bookkeeping (2.7 GB) is allocated (issue 39).
+           {"render --backend sdf-global --global-voxel 0.045 --scene thesis:sphere:1000 --size 16x16 --frames 1 --warmup 0",
+            "of bookkeeping to build them, more than --max-structure-mb allows (2048)"},
            {"render --backend sdf-global --hit thesis" + small, "--hit thesis"},
            {"render --backend sdf-global --cell-bound" + small, "--cell-bound"}}) {
     const test::CommandResult r = test::run_sdfbench(args);

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "renderers/sdf/build_reuse.h"
 #include "renderers/sdf/cache/section_codec.h"
 #include "renderers/sdf/sdf_cache.h"
 #include "renderers/sdf/sdf_cache_format.h"
@@ -680,6 +681,73 @@ TEST_F(SdfCacheTest, CommandLineBuildWritesAndRenderRefusesCorruptCache) {
   }
   const test::CommandResult missing = test::run_sdfbench("inspect " + (dir_.path() / "nope").string());
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
+}
+
+}  // namespace
+}  // namespace sdfbench
+
+namespace sdfbench {
+namespace {
+
+// This process' builds reused (build_reuse.h): the same geometry and parameters give the same
+// structure as a fresh build, with the first build's time; another parameter or mesh builds anew.
+TEST(SdfBuildReuse, SameInputsReuseAndOthersBuild) {
+  sdf::forget_reused_builds();
+  const Scene scene = load_scene("thesis:teapot:3");
+  const Mesh& mesh = scene.meshes.at(0);
+  int builds = 0;
+  const sdf::MeshGridParams params;
+  const auto build = [&](const sdf::MeshGridParams& p) {
+    return [&, p] {
+      ++builds;
+      return sdf::build_mesh_distance_grid(mesh, p);
+    };
+  };
+  const sdf::MeshDistanceGrid first = sdf::reuse_mesh_grid(mesh, params, build(params));
+  const sdf::MeshDistanceGrid again = sdf::reuse_mesh_grid(mesh, params, build(params));
+  EXPECT_EQ(builds, 1);
+  test::expect_same_grid(first, again);
+  EXPECT_EQ(first.build_ms, again.build_ms);
+  test::expect_same_grid(again, sdf::build_mesh_distance_grid(mesh, params));
+  sdf::MeshGridParams finer = params;
+  finer.cells_per_extent = 16;
+  sdf::reuse_mesh_grid(mesh, finer, build(finer));
+  sdf::MeshGridParams capped = params;
+  capped.max_bytes = 1 << 20;  // a limit is part of the key: a reused build never bypasses it
+  EXPECT_THROW(sdf::reuse_mesh_grid(mesh, capped, build(capped)), Error);
+  capped.max_bytes = 64 << 20;
+  sdf::reuse_mesh_grid(mesh, capped, build(capped));
+  EXPECT_EQ(builds, 4);
+  Mesh moved = mesh;
+  moved.positions[0].x += 1e-3f;
+  sdf::reuse_mesh_grid(moved, params, [&] {
+    ++builds;
+    return sdf::build_mesh_distance_grid(moved, params);
+  });
+  EXPECT_EQ(builds, 5);
+  sdf::forget_reused_builds();
+  sdf::reuse_mesh_grid(mesh, params, build(params));
+  EXPECT_EQ(builds, 6);
+
+  // The global field: keyed by the scene's geometry (an instance moved is another field).
+  const sdf::SceneSdf sdf = sdf::build_scene_sdf(scene, params, sdf::SceneHashParams{});
+  sdf::GlobalFieldParams global;
+  global.voxel = 0.1f;
+  int fields = 0;
+  const auto field_of = [&](const Scene& s, const sdf::SceneSdf& structures) {
+    return sdf::reuse_global_field(s, params, global, [&] {
+      ++fields;
+      return sdf::build_global_field(s, structures, params, global);
+    });
+  };
+  const sdf::GlobalField a = field_of(scene, sdf), b = field_of(scene, sdf);
+  EXPECT_EQ(fields, 1);
+  EXPECT_EQ(a.field.atlas, b.field.atlas);
+  EXPECT_EQ(a.list_instances, b.list_instances);
+  Scene shifted = scene;
+  shifted.instances[0].transform.translation.x += 0.5f;
+  field_of(shifted, sdf::build_scene_sdf(shifted, params, sdf::SceneHashParams{}));
+  EXPECT_EQ(fields, 2);
 }
 
 }  // namespace

@@ -125,6 +125,17 @@ GlobalField build_global_field(const Scene& scene, const SceneSdf& scene_sdf, co
     throw Error("sdf-global: --global-voxel " + std::to_string(field.voxel) + " would need " +
                 std::to_string(uint64_t(brick_count_d)) + " bricks over the scene (at most " + std::to_string(kMaxHashCells) +
                 "); use a larger --global-voxel");
+  // What the build holds per brick before any brick is sampled (candidate offsets, stored flag,
+  // list vector, indirection, coarse value), bounded here: the later checks come after it is
+  // allocated (2^26 bricks are 2.7 GB of it).
+  constexpr uint64_t kBookkeepingBytesPerBrick = sizeof(uint64_t) + sizeof(uint8_t) + sizeof(std::vector<uint32_t>) +
+                                                 sizeof(uint32_t) + sizeof(float);
+  if (brick_count_d * kBookkeepingBytesPerBrick > double(params.max_bytes))
+    throw Error("sdf-global: --global-voxel " + std::to_string(field.voxel) + " would need " +
+                std::to_string(uint64_t(brick_count_d)) + " bricks over the scene, " +
+                describe_bytes(uint64_t(brick_count_d) * kBookkeepingBytesPerBrick) +
+                " of bookkeeping to build them, more than --max-structure-mb allows (" +
+                std::to_string(params.max_bytes >> 20) + "); use a larger --global-voxel or raise --max-structure-mb");
   field.bricks = glm::uvec3(bricks);
   const size_t brick_count = size_t(brick_count_d);
   const float brick_size = float(kBrickCells) * field.voxel;

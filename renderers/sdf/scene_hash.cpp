@@ -11,6 +11,7 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include "renderers/sdf/build_reuse.h"
 #include "util/error.h"
 #include "util/input_file.h"
 #include "util/progress.h"
@@ -341,7 +342,8 @@ SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, 
   scene_hash_dims(scene, hash_params);  // an impossible hash is refused before the mesh grids are built
   for (const StructureRequest& extra : extras) validate(extra);
   SceneSdf sdf;
-  for (const Mesh& mesh : scene.meshes) sdf.mesh_grids.push_back(build_mesh_distance_grid(mesh, mesh_params));
+  for (const Mesh& mesh : scene.meshes)
+    sdf.mesh_grids.push_back(reuse_mesh_grid(mesh, mesh_params, [&] { return build_mesh_distance_grid(mesh, mesh_params); }));
   sdf.hash = build_scene_hash(scene, sdf.mesh_grids, hash_params);
   for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
   for (const StructureRequest& extra : extras) add_structure(sdf, scene, mesh_params, extra);
@@ -353,14 +355,16 @@ void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh
 }
 
 void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const GlobalFieldParams& global) {
-  sdf.global_field = build_global_field(scene, sdf, mesh_params, global);
+  sdf.global_field = reuse_global_field(scene, mesh_params, global, [&] { return build_global_field(scene, sdf, mesh_params, global); });
   sdf.global_params = global;
 }
 
 void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const BrickFieldParams& bricks) {
   sdf.brick_fields.clear();
   for (size_t m = 0; m < scene.meshes.size(); ++m)
-    sdf.brick_fields.push_back(build_brick_field(scene.meshes[m], sdf.mesh_grids[m], mesh_params, bricks));
+    sdf.brick_fields.push_back(reuse_brick_field(scene.meshes[m], mesh_params, bricks, [&] {
+      return build_brick_field(scene.meshes[m], sdf.mesh_grids[m], mesh_params, bricks);
+    }));
   sdf.brick_params = bricks;
 }
 
