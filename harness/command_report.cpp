@@ -1,6 +1,9 @@
 // `sdfbench report`: one HTML page (harness/html_report.h) from measurement CSVs, the check
 // images their runs kept (--keep-images) and plots; images go to a folder beside the page.
 #include <algorithm>
+#include <cstdio>
+#include <optional>
+#include <utility>
 #include <filesystem>
 #include <iostream>
 
@@ -43,14 +46,58 @@ std::vector<ReportPlot> collect_plots(const std::vector<std::string>& dirs, Imag
   for (const std::string& dir : dirs) {
     if (!fs::is_directory(dir)) throw Error("--plots '" + dir + "' is not a folder");
     std::vector<fs::path> files;
-    for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir))
-      if (e.is_regular_file() && e.path().extension() == ".png") files.push_back(e.path());
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::none, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec))
+      if (it->is_regular_file(ec) && it->path().extension() == ".png") files.push_back(it->path());
+    if (ec) throw Error("--plots '" + dir + "': cannot read the folder: " + ec.message());
     std::sort(files.begin(), files.end());
     for (const fs::path& p : files)
       plots.push_back({store.add_file(p, "--plots image"), p.lexically_relative(dir).string()});
   }
   return plots;
 }
+
+// An image column's file: a relative path that stays inside the CSV's folder once symlinks are
+// resolved (the report's folder is meant for sharing: nothing else is copied into it).
+fs::path image_in_csv_folder(const CsvTable& t, const std::string& name, const std::string& where) {
+  const fs::path folder = fs::path(t.source).parent_path().empty() ? fs::path(".") : fs::path(t.source).parent_path();
+  std::error_code ec;
+  const fs::path base = fs::canonical(folder, ec);
+  const fs::path path = ec ? fs::path() : fs::weakly_canonical(base / name, ec);
+  const auto [end, _] = std::mismatch(base.begin(), base.end(), path.begin(), path.end());
+  if (ec || name.empty() || fs::path(name).is_absolute() || end != base.end())
+    throw Error(where + ": '" + name + "' is not a file inside the CSV's folder '" + folder.string() + "'");
+  return path;
+}
+
+// The row's check size ("320x180"), which its kept images must have.
+std::optional<std::pair<uint32_t, uint32_t>> check_size_of(const CsvTable& t, size_t row, const std::string& where) {
+  if (!t.has_column("check_size")) return std::nullopt;
+  const std::string& text = t.rows[row][t.column("check_size")];
+  unsigned width = 0, height = 0;
+  char end = 0;
+  if (std::sscanf(text.c_str(), "%ux%u%c", &width, &height, &end) != 2 || width == 0 || height == 0 ||
+      width > kMaxImageSide || height > kMaxImageSide)
+    throw Error(where + ": check_size '" + text + "' is not WIDTHxHEIGHT");
+  return std::pair{uint32_t(width), uint32_t(height)};
+}
+
+// The page's image folder: made by this report, or one an earlier report made (its marker);
+// never a symlink or a folder of other files.
+bool prepare_report_folder(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::is_symlink(dir, ec)) throw Error("--out's image folder '" + dir.string() + "' is a symbolic link; name another --out");
+  const bool created = !fs::exists(dir, ec);
+  if (!created && fs::is_directory(dir, ec) && !fs::exists(dir / ImageStore::kOwnerMarker, ec) && !fs::is_empty(dir, ec))
+    throw Error("--out's image folder '" + dir.string() + "' holds files that no sdfbench report wrote (no " +
+                ImageStore::kOwnerMarker + "); name another --out or move them");
+  prepare_image_folder(dir, "--out's image folder");
+  if (!fs::exists(dir / ImageStore::kOwnerMarker, ec)) write_file_atomically(dir / ImageStore::kOwnerMarker, {});
+  return created;
+}
+
+void write_report(const ReportArgs& args, std::vector<ReportFile>& files, const fs::path& out, const fs::path& files_dir);
 
 void run_report(const ReportArgs& args) {
   const fs::path out = args.out;
@@ -62,25 +109,34 @@ void run_report(const ReportArgs& args) {
   check_distinct_outputs({{"--out", out}}, inputs);
   std::vector<ReportFile> files;
   for (const std::string& path : args.inputs) files.push_back({read_csv(path), {}});
-  const bool created = !fs::exists(files_dir);
-  prepare_image_folder(files_dir, "--out's image folder");
-  if (created) write_file_atomically(files_dir / ImageStore::kOwnerMarker, {});
+  const OutputLock lock(out, "--out");  // not while another report writes this page
+  const bool created = prepare_report_folder(files_dir);
+  try {
+    write_report(args, files, out, files_dir);
+  } catch (...) {
+    std::error_code ec;
+    if (created) fs::remove_all(files_dir, ec);  // no half-made folder: it held nothing before
+    throw;
+  }
+}
+
+void write_report(const ReportArgs& args, std::vector<ReportFile>& files, const fs::path& out, const fs::path& files_dir) {
   ImageStore store(files_dir, files_dir.filename().string() + "/");
   RowRerenderer rerenderer(store, files_dir, args.device);
 
   size_t kept = 0, rendered = 0, mismatched = 0, without = 0;
   for (ReportFile& file : files) {
     const CsvTable& t = file.table;
-    const fs::path base = fs::path(t.source).parent_path();
     for (size_t row = 0; row < t.rows.size(); ++row) {
       RowImages images;
       const std::string where = "'" + t.source + "' row " + std::to_string(row + 1);
       auto field = [&](const char* column) { return t.has_column(column) ? t.rows[row][t.column(column)] : std::string(); };
       const bool failed = row_verdict(t, t.rows[row]).is_error();
       if (!field("frame_image").empty()) {
-        images.frame = store.add_file(base / field("frame_image"), where + ": frame_image");
-        images.reference = store.add_file(base / field("reference_image"), where + ": reference_image");
-        images.diff = store.add_file(base / field("diff_image"), where + ": diff_image");
+        const auto size = check_size_of(t, row, where);
+        for (auto [column, href] : {std::pair{"frame_image", &images.frame}, std::pair{"reference_image", &images.reference},
+                                    std::pair{"diff_image", &images.diff}})
+          *href = store.add_file(image_in_csv_folder(t, field(column), where + ": " + column), where + ": " + column, size);
         images.note = "kept by the run";
         ++kept;
       } else if (failed) {

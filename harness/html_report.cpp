@@ -161,7 +161,7 @@ void thesis_tables(std::ostringstream& out, const std::vector<ReportFile>& files
       const std::string sizes = sizes_of(t, rows);
       out << "<h3>Table " << config.id << ": " << escape(config.backend) << ", " << to_string(config.mode) << " ("
           << escape(t.source) << ")</h3>\n<p>" << escape(config.description) << ". Each cell: FPS measured here ("
-          << escape(distinct(t, "device")) << ", " << sizes << "), the thesis' FPS (GTX 1070, 1280x720) and ours / the thesis'."
+          << escape(distinct(t, "device")) << ", " << escape(sizes) << "), the thesis' FPS (GTX 1070, 1280x720) and ours / the thesis'."
           << (sizes != "1280x720" ? " <strong>Other resolution than the thesis': FPS are not comparable, only the trends.</strong>" : "")
           << " Another device than the thesis' GPU: the ratio says how far this device is, not the method.</p>\n"
           << "<table class=\"grid\"><tr><th>mesh \\ objects</th>";

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -16,10 +17,19 @@ namespace {
 constexpr uint64_t kMaxImageBytes = uint64_t{64} << 20;
 }
 
+ImageStore::ImageStore(fs::path dir, std::string href_prefix) : dir_(std::move(dir)), prefix_(std::move(href_prefix)) {
+  std::ifstream marker(dir_ / kOwnerMarker);
+  for (std::string name; std::getline(marker, name);)
+    if (name.size() == 20 && name.ends_with(".png") && name.find('/') == std::string::npos) written_.insert(name);
+}
+
 std::string ImageStore::add(std::span<const std::byte> png) {
   char name[32];
   std::snprintf(name, sizeof name, "%016llx.png", static_cast<unsigned long long>(fnv1a64(png)));
-  if (names_.insert(name).second && !fs::exists(dir_ / name)) write_file_atomically(dir_ / name, png);
+  if (names_.insert(name).second && !fs::exists(dir_ / name)) {
+    write_file_atomically(dir_ / name, png);
+    written_.insert(name);
+  }
   return prefix_ + name;
 }
 
@@ -28,10 +38,24 @@ std::string ImageStore::add(const FloatImage& image) {
   return add(std::as_bytes(std::span(png.data(), png.size())));
 }
 
-std::string ImageStore::add_file(const fs::path& path, const std::string& what) {
+std::string ImageStore::add_file(const fs::path& path, const std::string& what,
+                                 std::optional<std::pair<uint32_t, uint32_t>> size) {
   const std::vector<std::byte> bytes = read_input_bytes(path, what, kMaxImageBytes);
-  static const unsigned char magic[] = {0x89, 'P', 'N', 'G'};
-  if (bytes.size() < 4 || std::memcmp(bytes.data(), magic, 4) != 0) throw Error(what + " '" + path.string() + "' is not a PNG image");
+  // The signature and the IHDR chunk that must follow it: width and height, big-endian.
+  static const unsigned char signature[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+  if (bytes.size() < 33 || std::memcmp(bytes.data(), signature, sizeof signature) != 0)
+    throw Error(what + " '" + path.string() + "' is not a PNG image");
+  const auto word = [&](size_t at) {
+    uint32_t v = 0;
+    for (size_t i = 0; i < 4; ++i) v = v << 8 | std::to_integer<uint32_t>(bytes[at + i]);
+    return v;
+  };
+  const uint32_t width = word(16), height = word(20);
+  if (size ? (width != size->first || height != size->second)
+           : (width == 0 || height == 0 || width > kMaxImageSide || height > kMaxImageSide))
+    throw Error(what + " '" + path.string() + "' declares " + std::to_string(width) + "x" + std::to_string(height) + " pixels, " +
+                (size ? "not the row's check size " + std::to_string(size->first) + "x" + std::to_string(size->second)
+                      : "more than " + std::to_string(kMaxImageSide) + " a side"));
   return add(bytes);
 }
 
@@ -41,9 +65,12 @@ fs::path ImageStore::file_of(const std::string& href) const {
 }
 
 void ImageStore::remove_unlinked() const {
-  if (!fs::exists(dir_ / kOwnerMarker)) return;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir_))
-    if (e.is_regular_file() && e.path().extension() == ".png" && !names_.count(e.path().filename().string())) fs::remove(e.path());
+  std::string list;
+  for (const std::string& name : written_) {
+    if (names_.count(name)) list += name + "\n";
+    else if (fs::is_regular_file(fs::symlink_status(dir_ / name))) fs::remove(dir_ / name);
+  }
+  write_file_atomically(dir_ / kOwnerMarker, std::as_bytes(std::span(list.data(), list.size())));
 }
 
 }  // namespace sdfbench

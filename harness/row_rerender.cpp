@@ -15,6 +15,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A CSV as its real path: x.csv and ./x.csv are one file of the list.
+std::string real_path(const std::string& path) {
+  std::error_code ec;
+  const fs::path real = fs::weakly_canonical(path, ec);
+  return ec ? path : real.string();
+}
+
 const std::vector<std::string> kListColumns = {"csv", "key", "frame", "reference", "diff", "sdfbench", "reference_row",
                                                 "hit_agreement", "id_agreement", "psnr", "depth_p99", "depth_p99_voxels"};
 
@@ -56,7 +63,7 @@ RowRerenderer::RowRerenderer(ImageStore& store, fs::path dir, std::string device
 const std::vector<std::string>* RowRerenderer::find_listed(const CsvTable& t, size_t row) const {
   const std::string key = configuration_key(t.rows[row], t.columns);
   for (const auto& line : previous_.rows) {
-    if (line[0] != t.source || line[1] != key) continue;
+    if (line[0] != real_path(t.source) || line[1] != key) continue;
     for (int i = 2; i <= 4; ++i)
       if (const fs::path file = store_.file_of(line[i]); file.empty() || !fs::exists(file)) return nullptr;
     return &line;
@@ -75,7 +82,7 @@ Rerender RowRerenderer::get(const CsvTable& t, size_t row) {
   }
   const std::string key = configuration_key(t.rows[row], t.columns);
   const Rerender r = render(t, row);
-  list_.rows.push_back({t.source, key, r.frame, r.reference, r.diff, r.sdfbench, r.reference_row ? "1" : "0", r.hit_agreement,
+  list_.rows.push_back({real_path(t.source), key, r.frame, r.reference, r.diff, r.sdfbench, r.reference_row ? "1" : "0", r.hit_agreement,
                         r.id_agreement, r.psnr, r.depth_p99, r.depth_p99_voxels});
   write_list(true);
   return r;

@@ -4,6 +4,7 @@
 
 #include "harness/benchmark_json.h"
 #include "harness/cli_common.h"
+#include "harness/image_store.h"
 #include "harness/commands.h"
 #include "harness/markdown_report.h"
 #include "harness/row_verdict.h"
@@ -76,10 +77,15 @@ void run_and_report(const std::vector<BenchConfig>& plan, const RunOptions& opti
   if (!options.markdown.empty()) check_output_path(options.markdown, "--markdown");
   if (!options.json.empty()) check_output_path(options.json, "--json");
   check_distinct_outputs({{"--csv", options.csv}, {"--markdown", options.markdown}, {"--json", options.json},
+                          {"--keep-images", options.keep_images},
                           {"--cache", plan.empty() ? std::string() : plan.front().options.cache.path}},
                          inputs);
   RunOptions run = options;  // the kept images' folder, made ready before the first row
   if (!options.keep_images.empty()) {
+    std::error_code ec;
+    if (std::filesystem::exists(std::filesystem::path(options.keep_images) / ImageStore::kOwnerMarker, ec))
+      throw Error("--keep-images '" + options.keep_images +
+                  "' is a report's image folder (the next report would remove these images); name another folder");
     prepare_image_folder(options.keep_images, "--keep-images");
     run.settings.keep_images = options.keep_images;
     if (!options.csv.empty()) run.settings.images_base = std::filesystem::path(options.csv).parent_path();

@@ -445,3 +445,21 @@ TEST(OutputSafety, AnOutputThatIsAnotherOutputOrAnInputIsRefused) {
 
 }  // namespace
 }  // namespace sdfbench
+
+namespace sdfbench {
+namespace {
+
+// A render's SDF cache that cannot be written (a read-only file system: /proc refuses new files,
+// even to root) is a warning, and the render goes on; `build`, whose output it is, refuses it.
+TEST(OutputSafety, AnUnwritableRenderCacheWarnsAndTheRenderGoesOn) {
+  const test::CommandResult r = test::run_sdfbench(
+      "render --scene thesis:sphere:1 --backend sdf-octree --size 8x8 --frames 1 --warmup 0 --cache /proc/sdfbench.cache");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("sdfbench: warning: cannot write '/proc/sdfbench.cache'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("FPS"), std::string::npos) << r.output;
+  const test::CommandResult build = test::run_sdfbench("build --scene thesis:sphere:1 --cache /proc/sdfbench.cache");
+  EXPECT_EQ(build.exit_code, 1) << build.output;
+}
+
+}  // namespace
+}  // namespace sdfbench

@@ -304,3 +304,90 @@ TEST(Report, ARerenderReproducesARowWithinRoundingOnly) {
 
 }  // namespace
 }  // namespace sdfbench
+
+namespace sdfbench {
+namespace {
+
+// The report's folder is shared (issue 39): every string from a CSV or a file name is escaped,
+// only images inside the CSV's folder at the row's check size are copied, only images a report
+// wrote are removed, and a failed report leaves no folder behind.
+TEST(Report, TheSharedFolderHoldsOnlyWhatTheRowsName) {
+  KeptTable t;
+  const fs::path folder = t.csv.parent_path();
+  const fs::path page = t.dir.path() / "page" / "r.html";
+  fs::create_directories(page.parent_path());
+  auto report = [&](const CsvTable& rows, const std::string& extra = "") {
+    write_csv(folder / "edited.csv", rows);
+    return test::run_sdfbench("report " + (folder / "edited.csv").string() + " --out " + page.string() + extra);
+  };
+  auto expect_error = [](const test::CommandResult& r, const std::string& says) {
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_EQ(r.output.rfind("sdfbench: error: ", 0), 0u) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_NE(r.output.find(says), std::string::npos) << r.output;
+  };
+  // Markup in every text column and in a plot's file name stays text.
+  CsvTable hostile = t.rows;
+  for (const char* column : {"width", "height", "scene", "backend", "mode", "device", "commit", "agreement", "run_index"})
+    for (auto& row : hostile.rows) row[hostile.column(column)] = "<script>alert(1)</script>\"'";
+  fs::create_directories(t.dir.path() / "plots");
+  fs::copy_file(folder / t.field(0, "frame_image"), t.dir.path() / "plots" / "<script>x.png");
+  const test::CommandResult shown = report(hostile, " --plots " + (t.dir.path() / "plots").string());
+  ASSERT_EQ(shown.exit_code, 0) << shown.output;
+  const std::string html = read_text(page);
+  EXPECT_EQ(html.find("<script"), std::string::npos) << "unescaped markup from the CSV or a file name";
+  EXPECT_NE(html.find("&lt;script&gt;"), std::string::npos);
+
+  // Image columns: outside the CSV's folder (absolute, .., a symlink out of it), or another size.
+  CsvTable rows = t.rows;
+  const std::string kept = t.field(1, "frame_image");
+  for (const std::string& outside : {(folder / kept).string(), std::string("../plots/<script>x.png"), std::string("link.png")}) {
+    fs::remove(folder / "link.png");
+    fs::create_symlink(t.dir.path() / "plots" / "<script>x.png", folder / "link.png");
+    rows.rows[1][rows.column("frame_image")] = outside;
+    expect_error(report(rows), "row 2: frame_image: '" + outside + "' is not a file inside the CSV's folder");
+  }
+  const unsigned char header[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                                  0, 1, 0x86, 0xa0, 0, 1, 0x86, 0xa0, 8, 2, 0, 0, 0, 0, 0, 0, 0};  // 100000 x 100000
+  std::ofstream(folder / "kept" / "huge.png", std::ios::binary).write(reinterpret_cast<const char*>(header), sizeof header);
+  rows.rows[1][rows.column("frame_image")] = "kept/huge.png";
+  expect_error(report(rows), "declares 100000x100000 pixels, not the row's check size 48x27");
+
+  // Removal: a report removes the images it wrote that the new page does not link, and nothing
+  // else. (The failed runs above left the folder from the first report as it was.)
+  ASSERT_EQ(report(t.rows).exit_code, 0);
+  const fs::path files = page.parent_path() / "r_files";
+  std::ofstream(files / "mine.png") << "a user's file";
+  const size_t before = std::distance(fs::directory_iterator(files), fs::directory_iterator());
+  CsvTable one = t.rows;
+  one.rows.resize(1);
+  ASSERT_EQ(report(one).exit_code, 0);
+  EXPECT_TRUE(fs::exists(files / "mine.png"));
+  EXPECT_LT(std::distance(fs::directory_iterator(files), fs::directory_iterator()), before);
+
+  // Folders: a symlinked or foreign image folder, --keep-images into a report's folder or onto
+  // the CSV; a failed report leaves no folder it made.
+  const fs::path other = t.dir.path() / "other" / "s.html";
+  fs::create_directories(other.parent_path() / "s_files");
+  std::ofstream(other.parent_path() / "s_files" / "holiday.png") << "x";
+  expect_error(test::run_sdfbench("report " + t.csv.string() + " --out " + other.string()), "holds files that no sdfbench report wrote");
+  fs::remove_all(other.parent_path() / "s_files");
+  fs::create_directory_symlink(files, other.parent_path() / "s_files");
+  expect_error(test::run_sdfbench("report " + t.csv.string() + " --out " + other.string()), "is a symbolic link");
+  const std::string table = "table --meshes sphere --objects 1 --backends embree --size 8x8 --frames 1 --warmup 0 --csv " +
+                            (t.dir.path() / "k.csv").string();
+  expect_error(test::run_sdfbench(table + " --keep-images " + files.string()), "is a report's image folder");
+  expect_error(test::run_sdfbench(table + " --keep-images " + (t.dir.path() / "k.csv").string()), "--keep-images");
+  EXPECT_FALSE(fs::exists(t.dir.path() / "k.csv"));
+  rows.rows[1][rows.column("frame_image")] = "kept/huge.png";
+  write_csv(folder / "edited.csv", rows);
+  const fs::path fresh = t.dir.path() / "fresh" / "f.html";
+  fs::create_directories(fresh.parent_path());
+  expect_error(test::run_sdfbench("report " + (folder / "edited.csv").string() + " --out " + fresh.string()), "huge.png");
+  EXPECT_FALSE(fs::exists(fresh.parent_path() / "f_files")) << "a failed report left its image folder";
+  expect_error(test::run_sdfbench("report " + t.csv.string() + " --out " + fresh.string() + " --plots /proc"),
+               "--plots '/proc': cannot read");
+}
+
+}  // namespace
+}  // namespace sdfbench

@@ -1,6 +1,7 @@
 #include "renderers/sdf/sdf_cache.h"
 
 #include <chrono>
+#include <iostream>
 #include <cstdio>
 #include <optional>
 #include <ostream>
@@ -90,7 +91,8 @@ void check_cacheable(const fs::path& path, const Scene& scene, const MeshGridPar
 
 }  // namespace
 
-void write_sdf_cache(const fs::path& path, const Scene& scene, const SceneSdf& sdf, const MeshGridParams& mesh_params) {
+bool write_sdf_cache(const fs::path& path, const Scene& scene, const SceneSdf& sdf, const MeshGridParams& mesh_params,
+                     bool warn_if_unwritable) {
   check_cacheable(path, scene, mesh_params);
   SdfCacheContents c;
   c.scene_hash = scene_geometry_hash(scene);
@@ -105,7 +107,16 @@ void write_sdf_cache(const fs::path& path, const Scene& scene, const SceneSdf& s
   if (bytes.size() > kMaxSdfCacheBytes)  // the loader would refuse it
     throw Error("SDF cache '" + path.string() + "' would be " + describe_bytes(bytes.size()) + ", more than the limit for a cache (" +
                 describe_bytes(kMaxSdfCacheBytes) + "); not written (use a coarser --mesh-cell or --hash-cell)");
-  write_file_atomically(path, bytes);
+  try {
+    write_file_atomically(path, bytes);
+    return true;
+  } catch (const Error& e) {
+    if (!warn_if_unwritable) throw;
+    // A cache that cannot be written (a read-only file system, a full disk) costs the next run a
+    // build, not this one its render: said, and the render goes on (as the mesh cache does).
+    std::cerr << "sdfbench: warning: " << e.what() << "; going on without updating the SDF cache\n";
+    return false;
+  }
 }
 
 namespace {
@@ -195,15 +206,14 @@ SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params,
       // Outside the policy: a field that cannot be built (or a cache too big to write) is no bad cache.
       SceneSdf& sdf = loaded->sdf;
       for (const StructureRequest& extra : loaded->missing) add_structure(sdf, scene, mesh_params, extra);
-      if (!loaded->missing.empty()) write_sdf_cache(path, scene, sdf, mesh_params);
-      for (const StructureRequest& extra : loaded->missing)
-        log << "SDF cache: added " << codec_for(extra).the_name << " (" << describe(extra) << ") to '" << path.string() << "'\n";
+      if (!loaded->missing.empty() && write_sdf_cache(path, scene, sdf, mesh_params, true))
+        for (const StructureRequest& extra : loaded->missing)
+          log << "SDF cache: added " << codec_for(extra).the_name << " (" << describe(extra) << ") to '" << path.string() << "'\n";
       return std::move(sdf);
     }
   }
   SceneSdf sdf = build_scene_sdf(scene, mesh_params, hash_params, extras);
-  write_sdf_cache(path, scene, sdf, mesh_params);
-  log << "SDF cache: built and wrote '" << path.string() << "'\n";
+  if (write_sdf_cache(path, scene, sdf, mesh_params, true)) log << "SDF cache: built and wrote '" << path.string() << "'\n";
   return sdf;
 }
 

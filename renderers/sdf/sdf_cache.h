@@ -20,9 +20,11 @@ namespace sdfbench::sdf {
 uint64_t scene_geometry_hash(const Scene& scene);
 
 // Writes atomically (temporary file + rename): a reader never sees a half-written cache. A cache
-// over kMaxSdfCacheBytes (which no loader would read) is refused instead.
-void write_sdf_cache(const std::filesystem::path& path, const Scene& scene, const SceneSdf& sdf,
-                     const MeshGridParams& mesh_params);
+// over kMaxSdfCacheBytes (which no loader would read) is refused instead (Error). A file that
+// cannot be written (read-only file system) is an Error, or with `warn_if_unwritable` (a render's
+// cache: the render goes on) a warning on stderr and false.
+bool write_sdf_cache(const std::filesystem::path& path, const Scene& scene, const SceneSdf& sdf,
+                     const MeshGridParams& mesh_params, bool warn_if_unwritable = false);
 
 // Reads and validates a cache completely, then checks it belongs to this scene and these
 // parameters. Throws Error with a clear message for a missing, special (FIFO, device,
