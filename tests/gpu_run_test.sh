@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
 # harness/scripts/gpu_run.sh end to end on lavapipe at a tiny size (issue 17): the device folder,
 # every compare agreeing, the tables' rows, and one-line errors for bad flags and devices.
-# Usage: tests/gpu_run_test.sh SDFBENCH_BINARY
+# Usage: tests/gpu_run_test.sh SDFBENCH_BINARY [run|reruns] (two ctest tests, each under a minute)
 set -euo pipefail
 binary=$(realpath "$1")
+part=${2:-run}  # run: the whole run and what it writes; reruns: --tables-only, resume, retries, errors
 root=$(cd "$(dirname "$0")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 script=$root/harness/scripts/gpu_run.sh
 
-"$script" --binary "$binary" --device lavapipe --size 32x18 --compare-size 32x18 --budget-s 1 --frames 1 \
+if [[ $part == run ]]; then
+"$script" --binary "$binary" --device lavapipe --size 32x18 --compare-size 32x18 --compare-objects 3 --budget-s 1 --frames 1 \
   --storage-scene thesis:sphere:10 --out "$work/out" -- --table 6.3 --meshes sphere --objects 1,10 --check-size 32x18 >"$work/log" 2>&1 ||
   { tail -20 "$work/log"; fail "gpu_run.sh on lavapipe exited $?"; }
 dir=$(echo "$work"/out/llvmpipe-*)
@@ -37,6 +39,14 @@ grep -q -- "--device lavapipe" "$dir/tables_command.txt" || fail "tables_command
 [[ $(grep -o '<tr id="f0r[0-9]*"' "$dir/report.html" | wc -l) -eq 16 ]] || fail "report.html does not show the 16 table rows"
 [[ $(grep -o '<img src="report_files/' "$dir/report.html" | wc -l) -ge 48 ]] || fail "report.html lacks the rows' images"
 # Again with --tables-only: no compares, the finished tables kept as they are.
+  echo "gpu_run.sh test (run): all passed"
+  exit 0
+fi
+
+# The reruns: a tables-only run to resume, a failing row retried, a relative --out, bad flags.
+"$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --out "$work/out" --tables-only \
+  -- --table 6.3 --meshes sphere --objects 1,10 --check-size 32x18 >"$work/log" 2>&1 || { tail -5 "$work/log"; fail "--tables-only run exited non-zero"; }
+dir=$(echo "$work"/out/llvmpipe-*)
 cp "$dir/tables.csv" "$work/before.csv"
 "$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --out "$work/out" --tables-only \
   -- --table 6.3 --meshes sphere --objects 1,10 --check-size 32x18 >"$work/log2" 2>&1 || { tail -5 "$work/log2"; fail "--tables-only rerun exited non-zero"; }
@@ -79,6 +89,7 @@ expect_error "--size needs a value" --size
 expect_error "--size takes WIDTHxHEIGHT" --size 0x10
 expect_error "--compare-size takes WIDTHxHEIGHT" --compare-size big
 expect_error "--frames takes a whole number" --frames x
+expect_error "--compare-objects takes a whole number" --compare-objects 0
 expect_error "--budget-s takes seconds" --budget-s -1
 [[ ! -e $work/bad ]] || fail "a refused run created its output folder"
-echo "gpu_run.sh test: all passed"
+echo "gpu_run.sh test (reruns): all passed"

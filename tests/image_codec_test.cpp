@@ -263,3 +263,21 @@ TEST(ImageCodec, FormatsByExtension) {
 
 }  // namespace
 }  // namespace sdfbench
+
+namespace sdfbench {
+namespace {
+
+// A PNG whose header declares 100000 x 100000 (libstb's "unknown image type") says its size.
+TEST(ImageCodec, AHugePngHeaderSaysItsSize) {
+  const unsigned char header[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                                  0, 1, 0x86, 0xa0, 0, 1, 0x86, 0xa0, 8, 2, 0, 0, 0, 0, 0, 0, 0};
+  try {
+    read_image_header(std::as_bytes(std::span(header)), "image 'huge.png'");
+    ADD_FAILURE() << "a 100000 x 100000 header was read";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "cannot read image 'huge.png': a PNG of 100000x100000 pixels, larger than 16384 on a side");
+  }
+}
+
+}  // namespace
+}  // namespace sdfbench
