@@ -11,6 +11,7 @@
 #include "harness/html_report.h"
 #include "harness/output_paths.h"
 #include "harness/image_store.h"
+#include "harness/kept_images.h"
 #include "harness/row_rerender.h"
 #include "harness/row_verdict.h"
 #include "harness/run_options.h"
@@ -56,31 +57,6 @@ std::vector<ReportPlot> collect_plots(const std::vector<std::string>& dirs, Imag
       plots.push_back({store.add_file(p, "--plots image"), p.lexically_relative(dir).string()});
   }
   return plots;
-}
-
-// An image column's file: a relative path that stays inside the CSV's folder once symlinks are
-// resolved (the report's folder is meant for sharing: nothing else is copied into it).
-fs::path image_in_csv_folder(const CsvTable& t, const std::string& name, const std::string& where) {
-  const fs::path folder = fs::path(t.source).parent_path().empty() ? fs::path(".") : fs::path(t.source).parent_path();
-  std::error_code ec;
-  const fs::path base = fs::canonical(folder, ec);
-  const fs::path path = ec ? fs::path() : fs::weakly_canonical(base / name, ec);
-  const auto [end, _] = std::mismatch(base.begin(), base.end(), path.begin(), path.end());
-  if (ec || name.empty() || fs::path(name).is_absolute() || end != base.end())
-    throw Error(where + ": '" + name + "' is not a file inside the CSV's folder '" + folder.string() + "'");
-  return path;
-}
-
-// The row's check size ("320x180"), which its kept images must have.
-std::optional<std::pair<uint32_t, uint32_t>> check_size_of(const CsvTable& t, size_t row, const std::string& where) {
-  if (!t.has_column("check_size")) return std::nullopt;
-  const std::string& text = t.rows[row][t.column("check_size")];
-  unsigned width = 0, height = 0;
-  char end = 0;
-  if (std::sscanf(text.c_str(), "%ux%u%c", &width, &height, &end) != 2 || width == 0 || height == 0 ||
-      width > kMaxImageSide || height > kMaxImageSide)
-    throw Error(where + ": check_size '" + text + "' is not WIDTHxHEIGHT");
-  return std::pair{uint32_t(width), uint32_t(height)};
 }
 
 // The page's image folder: made by this report, or one an earlier report made (its marker);
@@ -133,10 +109,7 @@ void write_report(const ReportArgs& args, std::vector<ReportFile>& files, const 
       auto field = [&](const char* column) { return t.has_column(column) ? t.rows[row][t.column(column)] : std::string(); };
       const bool failed = row_verdict(t, t.rows[row]).is_error();
       if (!field("frame_image").empty()) {
-        const auto size = check_size_of(t, row, where);
-        for (auto [column, href] : {std::pair{"frame_image", &images.frame}, std::pair{"reference_image", &images.reference},
-                                    std::pair{"diff_image", &images.diff}})
-          *href = store.add_file(image_in_csv_folder(t, field(column), where + ": " + column), where + ": " + column, size);
+        images = kept_images(t, row, store);
         images.note = "kept by the run";
         ++kept;
       } else if (failed) {

@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 #include <regex>
@@ -143,7 +144,8 @@ TEST(Report, BadInputIsOneErrorLine) {
   const fs::path out = t.dir.path() / "r.html";
   auto expect_error = [](const test::CommandResult& r, const std::string& says) {
     EXPECT_EQ(r.exit_code, 1) << r.output;
-    EXPECT_NE(r.output.find("sdfbench: error: "), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.rfind("sdfbench: error: ", 0), 0u) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one line: " << r.output;
     EXPECT_NE(r.output.find(says), std::string::npos) << r.output;
   };
   expect_error(test::run_sdfbench("report " + t.csv.string() + " --out " + (t.dir.path() / "r.txt").string()), "name it *.html");

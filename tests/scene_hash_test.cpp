@@ -27,7 +27,7 @@ void expect_exact_distances(const Scene& scene, const sdf::SceneSdf& sdf, int sa
   const sdf::SceneHash& h = sdf.hash;
   const glm::vec3 size = glm::vec3(h.dims) * h.cell_size;
   Pcg32 rng(seed);
-  int checked = 0;
+  int near_surface = 0;
   for (int s = 0; s < samples; ++s) {
     // Half uniform in the hash box, half near a random instance's surface region.
     glm::vec3 p = h.origin + glm::vec3(rng.uniform(), rng.uniform(), rng.uniform()) * size;
@@ -38,9 +38,10 @@ void expect_exact_distances(const Scene& scene, const sdf::SceneSdf& sdf, int sa
     const sdf::SceneDistance fast = sdf::scene_distance(sdf, scene, p);
     const sdf::SceneDistance truth = sdf::brute_force_scene_distance(sdf, scene, p);
     ASSERT_NEAR(fast.distance, truth.distance, 1e-5f * (1.0f + truth.distance)) << "point " << s;
-    ++checked;
+    near_surface += std::abs(truth.distance) < 0.01f * glm::length(size);
   }
-  EXPECT_EQ(checked, samples);
+  // The points probe where the hash's answers matter most: a tenth of them close to a surface.
+  EXPECT_GT(near_surface, samples / 10);
 }
 
 TEST(SceneHash, HashOnlyListsAreExactOn1000Instances) {

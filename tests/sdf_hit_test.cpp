@@ -270,6 +270,11 @@ TEST(SdfHit, ThesisHitModeStaysSelectable) {
   const FrameRequest request{64, 36, RenderMode::Primary, true, {}, true};
   const FrameResult a = exact->render(request), b = old->render(request);
   EXPECT_NE(a.images.depth, b.images.depth);
+  auto embree = create_renderer("embree", BackendOptions{});
+  embree->prepare(scene);
+  const FrameImages expected = embree->render(request).images;
+  EXPECT_EQ(check_thresholds(compare_frames(a.images, expected), AgreementThresholds{}), "") << "exact hits";
+  EXPECT_EQ(check_thresholds(compare_frames(b.images, expected), AgreementThresholds{}), "") << "the thesis' hits";
   EXPECT_GT(a.counters[COUNTER_TRIANGLE_TESTS].value_or(0), 0u);  // the exact hit's ray-triangle tests
   EXPECT_EQ(b.counters[COUNTER_TRIANGLE_TESTS].value_or(0), 0u);
 }

@@ -64,12 +64,16 @@ glm::vec3 sky(const Scene& scene, float dir_y) {
   return glm::mix(scene.sky.horizon, scene.sky.zenith, std::sqrt(glm::clamp(dir_y, 0.0f, 1.0f)));
 }
 
-// The pinhole camera ray through a pixel's centre, from the frame parameters the kernels get.
+// The pinhole camera ray through a pixel's centre, in closed form from the scene's camera (not
+// from the frame parameters the kernels get, which are under test): a vertical field of view
+// fov_y, square pixels (the horizontal extent is the aspect ratio times the vertical), +y up.
 shading::Ray pixel_ray(const Scene& scene, uint32_t x, uint32_t y) {
-  const shading::FrameParams f = make_shading_inputs(scene, FrameRequest{kWidth, kHeight}).frame;
+  const Camera& c = scene.camera;
+  const glm::vec3 forward = glm::normalize(c.look_at - c.position);
+  const glm::vec3 right = glm::normalize(glm::cross(forward, c.up)), up = glm::cross(right, forward);
+  const float half_height = std::tan(glm::radians(c.fov_y_degrees) / 2.0f), half_width = half_height * kWidth / kHeight;
   const float sx = (x + 0.5f) / kWidth * 2.0f - 1.0f, sy = 1.0f - (y + 0.5f) / kHeight * 2.0f;
-  const glm::vec3 d = glm::vec3(f.camera_forward) + sx * glm::vec3(f.camera_right) + sy * glm::vec3(f.camera_up);
-  return {glm::vec3(f.camera_origin), glm::normalize(d)};
+  return {c.position, glm::normalize(forward + sx * half_width * right + sy * half_height * up)};
 }
 
 TEST(Whitted, EveryBackendAgreesWithEmbree) {

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace sdfbench {
 
@@ -13,12 +14,12 @@ bool MachineLoad::busy(unsigned cores) const {
   return (judged && (steal_pct > kBusyStealPct || other_pct > kBusyOtherPct)) || load_avg > 1.5 * static_cast<double>(cores);
 }
 
-LoadMeter::LoadMeter() : start_(read_ticks()) {}
+LoadMeter::LoadMeter(std::filesystem::path proc) : proc_(std::move(proc)), start_(read_ticks()) {}
 
-std::optional<LoadMeter::Ticks> LoadMeter::read_ticks() {
+std::optional<LoadMeter::Ticks> LoadMeter::read_ticks() const {
   // /proc/stat's first line: cpu user nice system idle iowait irq softirq steal guest guest_nice
   // (clock ticks over all CPUs; guest time is already inside user).
-  std::ifstream stat("/proc/stat");
+  std::ifstream stat(proc_ / "stat");
   std::string cpu;
   uint64_t v[8] = {};
   if (!(stat >> cpu >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5] >> v[6] >> v[7]) || cpu != "cpu") return std::nullopt;
@@ -28,7 +29,7 @@ std::optional<LoadMeter::Ticks> LoadMeter::read_ticks() {
   t.steal = v[7];
   // /proc/self/stat: utime and stime (fields 14 and 15, every thread), after the command name,
   // which may hold spaces: counted from its closing parenthesis.
-  std::ifstream self("/proc/self/stat");
+  std::ifstream self(proc_ / "self" / "stat");
   std::string line;
   if (!std::getline(self, line)) return std::nullopt;
   const size_t close = line.rfind(')');
@@ -46,7 +47,7 @@ std::optional<LoadMeter::Ticks> LoadMeter::read_ticks() {
 
 std::optional<MachineLoad> LoadMeter::stop() const {
   const std::optional<Ticks> end = read_ticks();
-  std::ifstream loadavg("/proc/loadavg");
+  std::ifstream loadavg(proc_ / "loadavg");
   MachineLoad load;
   if (!start_ || !end || !(loadavg >> load.load_avg)) return std::nullopt;
   const double total = static_cast<double>(end->total - start_->total);

@@ -4,6 +4,7 @@
 // load average and, over its timed frames, the share of CPU time the hypervisor stole and the share
 // other processes used. A row timed on a busy machine is flagged (MachineLoad::busy).
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 
 namespace sdfbench {
@@ -24,17 +25,19 @@ inline constexpr double kBusyOtherPct = 10.0;
 inline constexpr double kMinJudgedCpuSeconds = 0.5;
 
 // Starts measuring when made; stop() gives the interval's load, or nothing where /proc cannot be
-// read (not Linux, a sandbox): the row's load columns stay empty then.
+// read (not Linux, a sandbox): the row's load columns stay empty then. `proc`: where stat,
+// self/stat and loadavg are read (tests give known tick counts).
 class LoadMeter {
  public:
-  LoadMeter();
+  explicit LoadMeter(std::filesystem::path proc = "/proc");
   std::optional<MachineLoad> stop() const;
 
  private:
   struct Ticks {
     uint64_t total = 0, busy = 0, steal = 0, self = 0;
   };
-  static std::optional<Ticks> read_ticks();
+  std::optional<Ticks> read_ticks() const;
+  std::filesystem::path proc_;
   std::optional<Ticks> start_;
 };
 

@@ -160,14 +160,18 @@ void mutate(std::vector<std::byte>& b, std::mt19937_64& rng) {
 
 }  // namespace
 
-// usage: sdfbench_cache_fuzz [--seconds S] [--seed N]
+// usage: sdfbench_cache_fuzz [--seconds S] [--seed N|time]   (time: a new seed each run, printed first)
 int main(int argc, char** argv) {
   double seconds = 5.0;
   uint64_t seed = 1;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::string(argv[i]) == "--seconds") seconds = std::atof(argv[i + 1]);
+    else if (std::string(argv[i]) == "--seed" && std::string(argv[i + 1]) == "time")
+      seed = static_cast<uint64_t>(std::chrono::system_clock::now().time_since_epoch().count());
     else if (std::string(argv[i]) == "--seed") seed = std::strtoull(argv[i + 1], nullptr, 10);
   }
+  // First, so that a sanitizer's abort still leaves the seed that replays it (--seed N).
+  std::fprintf(stderr, "cache fuzz: seed %llu\n", static_cast<unsigned long long>(seed));
   const std::vector<std::byte> seed_bytes = seed_cache();
   LLVMFuzzerTestOneInput(reinterpret_cast<const uint8_t*>(seed_bytes.data()), seed_bytes.size());
   if (accepted != 1) {

@@ -1,0 +1,18 @@
+#pragma once
+// A row's kept check images (table/sweep --keep-images) as the report takes them: each image
+// column's file resolved inside the CSV's folder (absolute paths, .. and symlinks out of it are
+// refused: the report's folder is meant for sharing), its PNG header checked against the row's
+// check size, then copied into the report's image store.
+#include <cstddef>
+
+#include "harness/csv.h"
+#include "harness/html_report.h"
+#include "harness/image_store.h"
+
+namespace sdfbench {
+
+// The row's frame, reference and difference images as the page links them. Throws Error naming
+// the CSV, the row and the column.
+RowImages kept_images(const CsvTable& table, size_t row, ImageStore& store);
+
+}  // namespace sdfbench
