@@ -41,10 +41,10 @@ void run_merge(const MergeArgs& args) {
   check_distinct_outputs({{"--csv", args.csv}, {"--markdown", args.markdown}}, inputs);
   const OutputLock lock(args.csv, "--csv");  // not while a table or sweep is writing it
   CsvTable merged, first;
-  std::vector<std::pair<size_t, std::vector<std::string>>> rows;  // run_index (+ file rank), fields
-  // --several-runs orders by file, then run_index: each file's indices sit in a span of their own.
-  constexpr size_t kRunIndexSpan = size_t(1) << 40;
-  size_t file_rank = 0;
+  // ((file, run_index), fields): --several-runs orders by file, then run_index (any index, up to
+  // 2^64 - 1, stays within its file); one run's shards by run_index alone (file 0).
+  std::vector<std::pair<std::pair<size_t, size_t>, std::vector<std::string>>> rows;
+  size_t file_number = 0;
   std::map<std::string, std::string> seen;                         // configuration key -> file
   for (const std::string& path : args.inputs) {
     CsvTable t = read_csv(path);
@@ -61,15 +61,15 @@ void run_merge(const MergeArgs& args) {
         throw Error("'" + path + "' and '" + it->second + "' both measure " + t.rows[r][scene] + " " + t.rows[r][backend] +
                     " " + t.rows[r][mode] + " (overlapping shards?)");
       seen[key] = path;
-      rows.emplace_back(args.several_runs ? file_rank + index : index, std::move(t.rows[r]));
+      rows.emplace_back(std::pair{args.several_runs ? file_number : 0, index}, std::move(t.rows[r]));
     }
-    file_rank += kRunIndexSpan;
+    ++file_number;
   }
   // Back in the order of the unsharded run (of each run in turn, with --several-runs).
   std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   size_t missing = 0, first_missing = 0;  // below the largest index: a shard not (yet) finished
   for (size_t i = 1; i < rows.size() && !args.several_runs; ++i) {
-    const size_t before = rows[i - 1].first, index = rows[i].first;
+    const size_t before = rows[i - 1].first.second, index = rows[i].first.second;
     if (index == before)
       throw Error("run_index " + std::to_string(index) + " is in the inputs twice, with other configurations: they are not the shards of one run");
     if (index > before + 1) {

@@ -52,6 +52,8 @@ cp "$dir/tables.csv" "$work/before.csv"
   -- --table 6.3 --meshes sphere --objects 1,10 --check-size 32x18 >"$work/log2" 2>&1 || { tail -5 "$work/log2"; fail "--tables-only rerun exited non-zero"; }
 grep -q "16 configuration(s) already" "$work/log2" || fail "the rerun did not resume: $(grep -m2 resume "$work/log2")"
 ! grep -q "gpu_run: compare" "$work/log2" || fail "--tables-only ran the compares"
+done_line=$(grep "gpu_run: done:" "$work/log2")
+[[ $done_line == *tables.csv* && $done_line != *agreement.txt* ]] || fail "--tables-only's done line names files it did not write: $done_line"
 cmp -s "$work/before.csv" "$dir/tables.csv" || fail "the rerun changed the finished tables"
 
 # Failed rows reach the exit status: with the ray-tracing extension hidden, the table's vk-rt

@@ -216,6 +216,16 @@ TEST(SweepCommand, ShardsMergeToTheUnshardedRows) {
   ASSERT_EQ(both.rows.size(), c.rows.size() + a.rows.size());
   EXPECT_EQ(both.rows.front()[both.column("run_id")], c.rows[0][c.column("run_id")]);
   EXPECT_EQ(both.rows.back()[both.column("run_id")], a.rows[0][a.column("run_id")]);
+  // A run_index near 2^64 stays in its file's place (the files were once ordered by a sum).
+  CsvTable huge = c;
+  huge.rows.resize(1);
+  huge.rows[0][huge.column("run_index")] = "18446744073709551000";
+  write_csv(dir.path() / "huge.csv", huge);
+  ASSERT_EQ(test::run_sdfbench("merge --several-runs " + s1.string() + " " + (dir.path() / "huge.csv").string() + " --csv " +
+                               merged.string()).exit_code, 0);
+  const CsvTable ordered = read_csv(merged);
+  EXPECT_EQ(ordered.rows.front()[ordered.column("run_id")], a.rows[0][a.column("run_id")]);
+  EXPECT_EQ(ordered.rows.back()[ordered.column("run_index")], "18446744073709551000");
   const auto foreign = dir.write("foreign.csv", "a,b\n1,2\n");
   bad = test::run_sdfbench("merge " + s1.string() + " " + foreign.string() + " --csv " + merged.string());
   EXPECT_EQ(bad.exit_code, 1) << bad.output;

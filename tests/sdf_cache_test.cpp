@@ -271,6 +271,22 @@ TEST_F(SdfCacheTest, ResealedHostileFilesAreRefused) {
     sdf::reseal_sdf_cache(hostile);
     expect_refused_everywhere(hostile, k.expected);
   }
+  // A value that decodes but is not what the scene and the parameters give: refused on loading
+  // for a scene (the decoder alone cannot know).
+  Bytes halved = valid;
+  const size_t at = section("mesh 0 grid header").offset + 12;
+  poke<float>(halved, at, 0.5f * peek<float>(halved, at));
+  sdf::reseal_sdf_cache(halved);
+  const fs::path path = dir_.path() / "halved.sdfcache";
+  write_all(path, halved);
+  try {
+    sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash());
+    ADD_FAILURE() << "a resealed grid with half the cell size was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("disagrees with itself: mesh '" + scene_->meshes[0].name + "''s grid has another cell size"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // sdf-bricks' brick fields ride in the same file: a bit-identical round trip, a cache without
@@ -493,6 +509,22 @@ TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
   EXPECT_NE(inspect.output.find("global field --global-voxel"), std::string::npos) << inspect.output;
   EXPECT_NE(inspect.output.find("global list instances"), std::string::npos) << inspect.output;
 
+  // A field whose voxel was changed and the file resealed decodes, but is not what its request gives.
+  {
+    const sdf::SdfCacheContents contents = sdf::decode_sdf_cache(read_all(path), "global");
+    Bytes edited = read_all(path);
+    for (const sdf::SdfCacheSection& section : contents.sections)
+      if (section.name == "global header") poke<float>(edited, section.offset + 12, 2.0f * a.field.voxel);
+    sdf::reseal_sdf_cache(edited);
+    const fs::path resealed = dir_.path() / "resealed.sdfcache";
+    write_all(resealed, edited);
+    try {
+      sdf::load_sdf_cache(resealed, *scene_, small_grid(), small_hash(), {global});
+      ADD_FAILURE() << "a resealed global field with another voxel was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("its global field's voxel is not the one its request"), std::string::npos) << e.what();
+    }
+  }
   sdf::GlobalFieldParams other = global;
   other.format = sdf::SdfFormat::u8;
   try {

@@ -172,4 +172,7 @@ for f in storage_vs_texel brick_fetch; do [[ -f $dir/$f.csv ]] && reports+=("$di
 "$binary" report "${reports[@]}" --out "$dir/report.html" >/dev/null || die "sdfbench report failed"
 [[ $failed -eq 0 ]] || { echo "gpu_run: some configurations failed (ERROR rows in $dir/tables.csv or the storage sweeps); run it again to retry them" >&2; exit 4; }
 [[ $disagreed -eq 0 ]] || { echo "gpu_run: a compare or a table row disagreed; see $agreement and $dir/tables.md" >&2; exit 2; }
-echo "gpu_run: done: $dir (info.txt, agreement.txt, storage_vs_texel.csv/.md, tables.csv, tables.md, report.html)" >&2
+written=()  # what this call wrote (--tables-only leaves the info, compares and sweeps as they were)
+if [[ $tables_only -eq 0 ]]; then written+=(info.txt agreement.txt storage_vs_texel.csv storage_vs_texel.md brick_fetch.csv brick_fetch.md); fi
+written+=(tables.csv tables.md report.html)
+echo "gpu_run: done: $dir ($(IFS=,; echo "${written[*]}" | sed 's/,/, /g'))" >&2

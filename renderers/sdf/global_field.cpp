@@ -85,6 +85,13 @@ float auto_global_voxel(const Scene& scene) {
   return std::max(extents[extents.size() / 2] / kAutoVoxelsPerInstance, largest / float(kMaxGlobalCells));
 }
 
+float global_field_voxel(const Scene& scene, const GlobalFieldParams& params) {
+  const glm::vec3 extent = scene.instance_bounds().extent();
+  const float largest = std::max({extent.x, extent.y, extent.z});
+  const float voxel = params.voxel > 0.0f ? params.voxel : auto_global_voxel(scene);
+  return std::max(voxel, 1e-6f * std::max(largest, 1e-30f));  // a size float can step by
+}
+
 GlobalField build_global_field(const Scene& scene, const SceneSdf& scene_sdf, const MeshGridParams& mesh_params,
                                const GlobalFieldParams& params) {
   validate(params);
@@ -110,9 +117,7 @@ GlobalField build_global_field(const Scene& scene, const SceneSdf& scene_sdf, co
 
   const Aabb scene_box = scene.instance_bounds();
   const glm::vec3 extent = scene_box.extent();
-  const float largest = std::max({extent.x, extent.y, extent.z});
-  field.voxel = params.voxel > 0.0f ? params.voxel : auto_global_voxel(scene);
-  field.voxel = std::max(field.voxel, 1e-6f * std::max(largest, 1e-30f));  // a size float can step by
+  field.voxel = global_field_voxel(scene, params);
   field.format = params.format;
   field.band = static_cast<float>(params.band) * field.voxel;
   field.quantization = brick_quantization(params.format, field.band);

@@ -56,6 +56,10 @@ struct GlobalField {
   size_t bytes() const { return field.bytes() + (list_begin.size() + list_instances.size()) * sizeof(uint32_t); }
 };
 
+// The voxel a build uses: the request, or auto_global_voxel(); never below 1e-6 of the scene's
+// extent (a size float can step by). A cache's field is checked against it.
+float global_field_voxel(const Scene& scene, const GlobalFieldParams& params);
+
 // Built in parallel (TBB) from `sdf`'s mesh grids (built with `mesh_params`) and its
 // world_to_object; where the band reaches beyond a mesh grid's box (which gives only a bound
 // there), the samples come from a grid of the same cells with a margin that covers the band (at
@@ -63,6 +67,7 @@ struct GlobalField {
 // long builds. Throws Error for a lattice of more than kMaxHashCells bricks or a field over
 // params.max_bytes (naming the flags to change). A scene without mesh instances gets one empty brick.
 inline constexpr float kMaxSamplingMarginCells = 16.0f;
+
 GlobalField build_global_field(const Scene& scene, const SceneSdf& sdf, const MeshGridParams& mesh_params,
                                const GlobalFieldParams& params);
 

@@ -504,25 +504,14 @@ uint32_t effective_cells_per_extent(const MeshGridParams& params, size_t triangl
   return std::max(params.cells_per_extent, std::min(kMaxScaledCellsPerExtent, static_cast<uint32_t>(std::lround(scaled))));
 }
 
-MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams& params) {
-  const auto start = std::chrono::steady_clock::now();
-  if (mesh.triangles.empty()) throw Error("mesh '" + mesh.name + "' has no triangles");
-  if (!std::isfinite(params.cell_size) || params.cell_size < 0.0f)
-    throw Error("grid cell size must be a positive number (or 0 for cells per extent), got " + std::to_string(params.cell_size));
-  if (params.cell_size == 0.0f && params.cells_per_extent == 0) throw Error("grid cells per extent must be at least 1");
-  if (params.subdivision < 1 || params.subdivision > 8)
-    throw Error("grid subdivision must be from 1 to 8, got " + std::to_string(params.subdivision));
-  if (!std::isfinite(params.margin_cells) || params.margin_cells < 0.0f)
-    throw Error("grid margin must be a non-negative number of cells, got " + std::to_string(params.margin_cells));
-
+MeshGridLayout mesh_grid_layout(const Mesh& mesh, const MeshGridParams& params) {
   Aabb bounds;
   for (const glm::uvec3& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) bounds.extend(mesh.positions[t[k]]);
   const glm::vec3 extent = bounds.extent();
   const float largest = std::max({extent.x, extent.y, extent.z});
-  MeshDistanceGrid grid;
+  MeshGridLayout grid;
   const uint32_t cells_per_extent = effective_cells_per_extent(params, mesh.triangles.size());
-  const bool far_cells = has_far_cells(params, mesh.triangles.size());
   grid.cell_size = params.cell_size > 0.0f ? params.cell_size
                                            : (largest > 0.0f ? largest / static_cast<float>(cells_per_extent) : 1.0f);
   double cells = 1.0;
@@ -539,6 +528,26 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
   }
   // Centred on the mesh: the slack of the rounded-up dims is split evenly.
   grid.origin = bounds.center() - 0.5f * glm::vec3(grid.dims) * grid.cell_size;
+  return grid;
+}
+
+MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams& params) {
+  const auto start = std::chrono::steady_clock::now();
+  if (mesh.triangles.empty()) throw Error("mesh '" + mesh.name + "' has no triangles");
+  if (!std::isfinite(params.cell_size) || params.cell_size < 0.0f)
+    throw Error("grid cell size must be a positive number (or 0 for cells per extent), got " + std::to_string(params.cell_size));
+  if (params.cell_size == 0.0f && params.cells_per_extent == 0) throw Error("grid cells per extent must be at least 1");
+  if (params.subdivision < 1 || params.subdivision > 8)
+    throw Error("grid subdivision must be from 1 to 8, got " + std::to_string(params.subdivision));
+  if (!std::isfinite(params.margin_cells) || params.margin_cells < 0.0f)
+    throw Error("grid margin must be a non-negative number of cells, got " + std::to_string(params.margin_cells));
+
+  const MeshGridLayout layout = mesh_grid_layout(mesh, params);
+  const bool far_cells = has_far_cells(params, mesh.triangles.size());
+  MeshDistanceGrid grid;
+  grid.origin = layout.origin;
+  grid.cell_size = layout.cell_size;
+  grid.dims = layout.dims;
 
   std::vector<TriangleBox> boxes(mesh.triangles.size());
   for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {

@@ -91,6 +91,16 @@ struct MeshDistanceGrid {
 uint32_t effective_cells_per_extent(const MeshGridParams& params, size_t triangles);
 bool has_far_cells(const MeshGridParams& params, size_t triangles);
 
+// Where a build puts the mesh's grid: its cell size (from the mesh's bounds and the parameters),
+// cells per axis and origin (centred on the mesh). Throws Error for a grid over 2^26 cells. A
+// cache's grid is checked against it (a cache resealed with changed values).
+struct MeshGridLayout {
+  glm::vec3 origin{0.0f};
+  float cell_size = 0.0f;
+  glm::uvec3 dims{0u};
+};
+MeshGridLayout mesh_grid_layout(const Mesh& mesh, const MeshGridParams& params);
+
 // Throws Error for unusable parameters (non-positive or non-finite cell size, zero cells per
 // extent, negative margin, subdivision outside 1..8), a grid over 2^26 cells, or lists passing
 // params.max_bytes (checked as they grow). Prints progress on stderr when the build is long.

@@ -152,6 +152,21 @@ CachedSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path,
   for (size_t m = 0; counts_match && m < scene.meshes.size(); ++m)
     counts_match = c.mesh_triangles[m] == scene.meshes[m].triangles.size() && c.mesh_vertices[m] == scene.meshes[m].positions.size();
   if (!counts_match) throw Error(stale + "its mesh or instance counts differ from the scene's");
+  // Values a build derives from others (the checksum is no authentication: a cache resealed with
+  // changed values decodes): each mesh grid where the mesh's bounds and the parameters put it,
+  // the global field at the voxel its request gives.
+  const std::string resealed = "SDF cache '" + path.string() + "' disagrees with itself: ";
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const MeshGridLayout layout = mesh_grid_layout(scene.meshes[m], mesh_params);
+    const MeshDistanceGrid& grid = c.sdf.mesh_grids[m];
+    if (grid.cell_size != layout.cell_size || grid.dims != layout.dims || grid.origin != layout.origin)
+      throw Error(resealed + "mesh '" + scene.meshes[m].name + "''s grid has another cell size, origin or size than the mesh's "
+                  "bounds and " + describe(mesh_params) + " give (a cache edited and resealed?)");
+  }
+  if (c.sdf.global_params && !scene.instances.empty() &&
+      c.sdf.global_field.field.voxel != global_field_voxel(scene, *c.sdf.global_params))
+    throw Error(resealed + "its global field's voxel is not the one its request (" + describe(*c.sdf.global_params) +
+                ") gives for this scene (a cache edited and resealed?)");
   CachedSdf cached;
   for (const StructureRequest& extra : extras) {
     const SectionCodec& codec = codec_for(extra);
