@@ -80,6 +80,14 @@ if grep -q ' broken=0 ' <<<"$control" || [ -z "$control" ]; then
   fail=1
 fi
 
+# The console check can fail: a copy of the page whose script logs must show in the log.
+sed 's|</body>|<script>console.error("sdfbench-console-control")</script></body>|' "$work/report.html" >"$work/console.html"
+run_probe "$work/console.html" "$work/console.log" >/dev/null
+if ! grep 'CONSOLE' "$work/console.log" | grep -q 'sdfbench-console-control'; then
+  echo "a page that logs to the console left no CONSOLE line: the console check would not catch one" >&2
+  fail=1
+fi
+
 browser --screenshot="$screenshot" --window-size=1280,1600 "file://$work/report.html" >/dev/null 2>&1
 [ -s "$screenshot" ] || { echo "no screenshot was written" >&2; fail=1; }
 [ "$fail" = 0 ] && echo "report_browser_test: ok (screenshot: $screenshot)"
