@@ -151,6 +151,11 @@ TEST(Report, RenderMissingReproducesTheRowsFiguresAndFlagsARowItCannot) {
   const test::CommandResult again = test::run_sdfbench("report " + csv.string() + " --render-missing --out " + page.string());
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(again.output.find("rendering the check frame"), std::string::npos) << again.output;
+  // The list is keyed by the CSV's real path: the same file spelled another way is the same file.
+  const test::CommandResult spelled = test::run_sdfbench("report " + (dir.path() / "." / "t.csv").string() +
+                                                         " --render-missing --out " + page.string());
+  ASSERT_EQ(spelled.exit_code, 0) << spelled.output;
+  EXPECT_EQ(spelled.output.find("rendering the check frame"), std::string::npos) << spelled.output;
 }
 
 TEST(Report, BadInputIsOneErrorLine) {
