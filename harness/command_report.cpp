@@ -1,9 +1,6 @@
 // `sdfbench report`: one HTML page (harness/html_report.h) from measurement CSVs, the check
 // images their runs kept (--keep-images) and plots; images go to a folder beside the page.
 #include <algorithm>
-#include <cstdio>
-#include <optional>
-#include <utility>
 #include <filesystem>
 #include <iostream>
 

@@ -1,7 +1,6 @@
 #include "harness/image_store.h"
 
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 
 #include "util/atomic_file.h"
@@ -41,16 +40,9 @@ std::string ImageStore::add(const FloatImage& image) {
 std::string ImageStore::add_file(const fs::path& path, const std::string& what,
                                  std::optional<std::pair<uint32_t, uint32_t>> size) {
   const std::vector<std::byte> bytes = read_input_bytes(path, what, kMaxImageBytes);
-  // The signature and the IHDR chunk that must follow it: width and height, big-endian.
-  static const unsigned char signature[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
-  if (bytes.size() < 33 || std::memcmp(bytes.data(), signature, sizeof signature) != 0)
-    throw Error(what + " '" + path.string() + "' is not a PNG image");
-  const auto word = [&](size_t at) {
-    uint32_t v = 0;
-    for (size_t i = 0; i < 4; ++i) v = v << 8 | std::to_integer<uint32_t>(bytes[at + i]);
-    return v;
-  };
-  const uint32_t width = word(16), height = word(20);
+  const auto declared = png_declared_size(bytes);
+  if (!declared || bytes.size() < 33) throw Error(what + " '" + path.string() + "' is not a PNG image");
+  const auto [width, height] = *declared;
   if (size ? (width != size->first || height != size->second)
            : (width == 0 || height == 0 || width > kMaxImageSide || height > kMaxImageSide))
     throw Error(what + " '" + path.string() + "' declares " + std::to_string(width) + "x" + std::to_string(height) + " pixels, " +

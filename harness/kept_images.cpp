@@ -40,7 +40,7 @@ std::optional<std::pair<uint32_t, uint32_t>> check_size_of(const CsvTable& t, si
   };
   if (x == std::string::npos || !number(0, x, width) || !number(x + 1, text.size(), height))
     throw Error(where + ": check_size '" + text + "' is not WIDTHxHEIGHT");
-  return std::pair{uint32_t(width), uint32_t(height)};
+  return std::pair{width, height};
 }
 
 }  // namespace

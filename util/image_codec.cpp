@@ -1,5 +1,7 @@
 #include "util/image_codec.h"
 
+#include <cstring>
+
 #include <cctype>
 #include <exception>
 
@@ -35,6 +37,18 @@ std::optional<ImageFormat> image_format_of(const std::filesystem::path& path) {
 
 ImageHeader read_image_header(std::span<const std::byte> bytes, const std::string& name) {
   return guarded("cannot read " + name, [&] { return codec::is_exr(bytes) ? codec::exr_header(bytes) : codec::stb_header(bytes); });
+}
+
+std::optional<std::pair<uint32_t, uint32_t>> png_declared_size(std::span<const std::byte> bytes) {
+  // The 8-byte signature, then IHDR's length (13) and type; width and height follow, big-endian.
+  static const unsigned char start[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+  if (bytes.size() < 24 || std::memcmp(bytes.data(), start, sizeof start) != 0) return std::nullopt;
+  const auto word = [&](size_t at) {
+    uint32_t v = 0;
+    for (size_t i = 0; i < 4; ++i) v = v << 8 | std::to_integer<uint32_t>(bytes[at + i]);
+    return v;
+  };
+  return std::pair{word(16), word(20)};
 }
 
 DecodedImage decode_image(std::span<const std::byte> bytes, const std::string& name) {

@@ -10,6 +10,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sdfbench {
@@ -42,6 +43,10 @@ struct DecodedImage {
 // channels); Radiance HDR, GIF, PSD, PIC and PNM (which libstb would decode) are refused (see
 // stb_codec.cpp), and so is a BMP or TGA shorter than its header's size needs, or truncated.
 ImageHeader read_image_header(std::span<const std::byte> bytes, const std::string& name);
+
+// The width and height a PNG's IHDR chunk declares (the signature and the chunk that must follow
+// it checked), read without decoding anything; nothing for bytes that do not start so.
+std::optional<std::pair<uint32_t, uint32_t>> png_declared_size(std::span<const std::byte> bytes);
 DecodedImage decode_image(std::span<const std::byte> bytes, const std::string& name);
 
 // Interleaved float pixels to encode; `channel_names` (one per channel) name EXR channels.

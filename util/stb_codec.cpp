@@ -122,19 +122,11 @@ DecodedImage decode_as(std::span<const std::byte> bytes, ImageHeader header, T* 
 ImageHeader stb_header(std::span<const std::byte> bytes) {
   const Format format = format_of(bytes);
   int w = 0, h = 0, c = 0;
-  if (format == Format::png && bytes.size() >= 24) {
-    // libstb refuses a PNG whose pixels pass 2^30 bytes with "unknown image type": the size the
-    // IHDR chunk declares (big-endian, after the 8-byte signature and the chunk's length and type) says why.
-    const auto word = [&](size_t at) {
-      uint64_t v = 0;
-      for (size_t i = 0; i < 4; ++i) v = v << 8 | std::to_integer<uint64_t>(bytes[at + i]);
-      return v;
-    };
-    const uint64_t width = word(16), height = word(20);
-    if (width > kMaxImageSide || height > kMaxImageSide)
-      throw Error("a PNG of " + std::to_string(width) + "x" + std::to_string(height) + " pixels, larger than " +
-                  std::to_string(kMaxImageSide) + " on a side");
-  }
+  // libstb refuses a PNG whose pixels pass 2^30 bytes with "unknown image type": the size its
+  // header declares says why.
+  if (const auto size = png_declared_size(bytes); size && (size->first > kMaxImageSide || size->second > kMaxImageSide))
+    throw Error("a PNG of " + std::to_string(size->first) + "x" + std::to_string(size->second) + " pixels, larger than " +
+                std::to_string(kMaxImageSide) + " on a side");
   if (!stbi_info_from_memory(data_of(bytes), length_of(bytes), &w, &h, &c)) fail();
   if (format == Format::bmp && h < 0 && h != INT_MIN) h = -h;  // a top-down BMP (libstb decodes it)
   if (w < 1 || h < 1 || c < 1)
