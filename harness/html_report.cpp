@@ -9,6 +9,7 @@
 
 #include "harness/measurement.h"
 #include "harness/row_verdict.h"
+#include "harness/structure_winners.h"
 
 namespace sdfbench {
 namespace {
@@ -71,7 +72,9 @@ std::string fps_cell(const Row& r, const RowVerdict& verdict) {
 }
 
 // A flagged row's colour: red when it failed what it promised, yellow for a caution.
-const char* row_class(const RowVerdict& v) { return v.is_failure() ? "bad" : v.is_caution() ? "warn" : ""; }
+const char* row_class(const RowVerdict& v) {
+  return v.is_failure() ? "bad" : v.is_approximate() ? "approx" : v.is_caution() ? "warn" : "";
+}
 
 std::string distinct(const CsvTable& t, const std::string& column) {
   if (!t.has_column(column)) return "(not recorded)";
@@ -193,6 +196,80 @@ void thesis_tables(std::ostringstream& out, const std::vector<ReportFile>& files
   }
 }
 
+std::string cell(const Row& r, const std::string& column, int digits) {
+  return r[column].empty() ? "–" : r[column] == "inf" ? "∞" : fixed(r.number(column), digits);
+}
+
+// The answer first: per run, scene, mode and size, the fastest row of each kind of method with
+// its ratio to the group's winner, memory, build time and verdict (harness/structure_winners.h).
+void winners_section(std::ostringstream& out, const std::vector<ReportFile>& files) {
+  std::vector<const CsvTable*> tables;
+  for (const ReportFile& f : files) tables.push_back(&f.table);
+  const StructureWinners winners = structure_winners(tables, [&](size_t f, size_t row) {
+    return verdict_of(Row{&files[f].table, row}, files[f].images[row]);
+  });
+  const auto kinds_present = [](const WinnerGroup& g) {
+    return std::count_if(g.best.begin(), g.best.end(), [](const auto& b) { return b.has_value(); });
+  };
+  out << "<h2 id=\"wins\">Which structure wins where</h2>\n<p>Rows of one run that measured the same scene, mode and "
+         "frame size, side by side: for each kind of method its fastest configuration, with Mrays/s, its speed as a "
+         "fraction of the group's winner (the winner: its margin over the next kind), structure MB and build seconds; "
+         "where the winner runs on the CPU (Embree), the fastest kind on the Vulkan device is named too. "
+         "Rows that failed what they promised (red) are left out and counted; field hits (≈) are approximations, "
+         "shown in their own kind and never the winner. Speeds compare only within a group: each group is one run "
+         "on one machine.</p>\n";
+  bool any = false;
+  for (size_t f = 0; f < files.size(); ++f) {
+    std::vector<const WinnerGroup*> groups;
+    for (const WinnerGroup& g : winners.groups)
+      if (g.file == f && kinds_present(g) >= 2) groups.push_back(&g);
+    if (groups.empty()) continue;
+    any = true;
+    const CsvTable& t = files[f].table;
+    std::vector<size_t> columns;  // the kinds this file's groups have
+    for (size_t k = 0; k < winners.kinds.size(); ++k)
+      if (std::any_of(groups.begin(), groups.end(), [&](const WinnerGroup* g) { return g->best[k].has_value(); }))
+        columns.push_back(k);
+    out << "<h3><a href=\"#file" << f << "\">" << escape(t.source) << "</a></h3>\n<table class=\"wins\"><tr><th>scene</th><th>mode</th><th>size</th>";
+    for (size_t k : columns) out << "<th>" << escape(winners.kinds[k]) << "</th>";
+    out << "</tr>\n";
+    for (const WinnerGroup* g : groups) {
+      const auto speed = [&](size_t row) { return Row{&t, row}.number("mrays_per_s"); };
+      const double top = g->winner ? speed(*g->best[*g->winner]) : 0;
+      double next = 0;  // the best speed of the other non-approximate kinds
+      for (size_t k = 0; k < g->best.size(); ++k)
+        if (g->best[k] && k != g->winner && !verdict_of(Row{&t, *g->best[k]}, files[f].images[*g->best[k]]).is_approximate())
+          next = std::max(next, speed(*g->best[k]));
+      out << "<tr><th>" << escape(g->scene) << (g->overlap.empty() ? "" : "<br><span class=\"param\">overlap " + escape(g->overlap) + "</span>")
+          << (g->failed ? "<br><span class=\"why\">" + std::to_string(g->failed) + " failed row(s) left out</span>" : "")
+          << "</th><td>" << escape(g->mode) << "</td><td>" << escape(g->size) << "</td>";
+      for (size_t k : columns) {
+        if (!g->best[k]) { out << "<td>–</td>"; continue; }
+        const size_t row = *g->best[k];
+        const Row r{&t, row};
+        const RowVerdict verdict = verdict_of(r, files[f].images[row]);
+        const bool won = g->winner == k;
+        const double v = speed(row);
+        // (streamed, not concatenated: GCC 12 gives a false -Wrestrict on "<literal>" + std::string, GCC bug 105651)
+        std::ostringstream ratio;
+        if (won) ratio << "winner" << (next > 0 ? ", " + fixed(v / next, 2) + "x the next" : std::string());
+        else if (top > 0) ratio << fixed(v / top, 2) << "x the winner";
+        if (!won && g->vulkan_winner == k) ratio << "; fastest on the Vulkan device";
+        out << "<td class=\"" << (won ? "win" : row_class(verdict)) << "\"><a href=\"#" << anchor(f, row) << "\">"
+            << (won ? "<b>" : "") << escape(r["backend"]) << (won ? "</b>" : "") << "</a> " << cell(r, "mrays_per_s", 3)
+            << " Mrays/s" << (verdict.marks.empty() ? "" : " ") << verdict.symbols() << "<br>" << ratio.str();
+        if (!r["structure_bytes"].empty()) out << "<br>" << fixed(r.number("structure_bytes") / 1e6, 1) << " MB";
+        if (!r["build_ms"].empty()) out << (r["structure_bytes"].empty() ? "<br>" : ", ") << fixed(r.number("build_ms") / 1e3, 2) << " s build";
+        if (verdict.approximate_voxels) out << "<br>depth error " << fixed(*verdict.approximate_voxels, 2) << " voxels";
+        out << "</td>";
+      }
+      out << "</tr>\n";
+    }
+    out << "</table>\n";
+  }
+  if (!any) out << "<p>No run here measured two kinds of method on one scene.</p>\n";
+}
+
 // Key columns (beyond scene, backend, mode and size) whose values differ between the file's rows:
 // a sweep's axes, a table's per-backend settings.
 std::vector<std::string> varying_columns(const CsvTable& t) {
@@ -206,10 +283,6 @@ std::vector<std::string> varying_columns(const CsvTable& t) {
     if (values.size() > 1) varying.push_back(name);
   }
   return varying;
-}
-
-std::string cell(const Row& r, const std::string& column, int digits) {
-  return r[column].empty() ? "–" : r[column] == "inf" ? "∞" : fixed(r.number(column), digits);
 }
 
 void thumbnail(std::ostringstream& out, const std::string& path, const std::string& what, const Row& r) {
@@ -262,7 +335,8 @@ h1{margin-top:0}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:1
 table{border-collapse:collapse;margin:.6em 0}th,td{border:1px solid #ddd;padding:3px 6px;vertical-align:top}
 th{background:#f3f3f3;text-align:left}table.env th{width:13em}table.grid td{text-align:right;min-width:6em}
 table.rows td:nth-child(n+3):nth-child(-n+10){text-align:right}
-tr.bad,td.bad{background:#fbe0e0}tr.warn,td.warn{background:#fff6d6}
+tr.bad,td.bad,li.bad{background:#fbe0e0}tr.warn,td.warn,li.warn{background:#fff6d6}
+tr.approx,td.approx,li.approx{background:#e6f0fb}td.win{background:#e3f5e1}table.wins td{min-width:9em}
 .thesis,.param,.note,.why{color:#666;font-size:12px}.why{color:#a00}
 td.images{white-space:nowrap}td.images img{margin-right:3px;border:1px solid #999;image-rendering:auto}
 figure{display:inline-block;margin:0 1em 1em 0;vertical-align:top}figure img{max-width:640px;border:1px solid #ccc}
@@ -279,28 +353,38 @@ std::string html_report(const std::vector<ReportFile>& files, const std::vector<
   out << ". Every row's images were checked against the reference backend at the check size before its figures were "
          "reported; the thumbnails are those check images (click for full size). The difference map is each pixel's "
          "largest channel error, dark violet 0 to yellow 0.1 and above (the check counts a pixel failed from 0.05).</p>\n";
-  std::vector<VerdictMark> failures, cautions;
-  for (const VerdictMark& m : all_verdict_marks()) (m.failure ? failures : cautions).push_back(m);
+  std::vector<VerdictMark> failures, approximations, cautions;
+  for (const VerdictMark& m : all_verdict_marks())
+    (m.failure ? failures : m.kind == Mark::approximate ? approximations : cautions).push_back(m);
   out << "<p>Flags: " << escape(verdict_legend(failures)) << " (<span class=\"bad\">red rows</span>: the row failed what it "
-      << "promised); " << escape(verdict_legend(cautions)) << " (<span class=\"warn\">yellow rows</span>).</p>\n";
-  // Flagged rows first: what a reader must not miss.
-  std::ostringstream flagged;
-  size_t flagged_count = 0;
+      << "promised); " << escape(verdict_legend(approximations)) << " (<span class=\"approx\">blue rows</span>); "
+      << escape(verdict_legend(cautions)) << " (<span class=\"warn\">yellow rows</span>).</p>\n"
+      << "<p><a href=\"#wins\">Which structure wins where</a> · <a href=\"#thesis\">the thesis' tables</a> · "
+         "<a href=\"#flagged\">flagged rows</a> · <a href=\"#plots\">plots</a> · every file's rows below.</p>\n";
+  winners_section(out, files);
+  thesis_tables(out, files, thesis);
+  // Flagged rows in three lists: failures (red), approximations (≈, blue), cautions (yellow).
+  std::ostringstream lists[3];
+  size_t counts[3] = {0, 0, 0};
   for (size_t f = 0; f < files.size(); ++f)
     for (size_t i = 0; i < files[f].table.rows.size(); ++i) {
       const Row r{&files[f].table, i};
       const RowVerdict verdict = verdict_of(r, files[f].images[i]);
       if (verdict.marks.empty()) continue;
-      ++flagged_count;
-      flagged << "<li class=\"" << row_class(verdict) << "\"><a href=\"#" << anchor(f, i) << "\">"
-              << escape(files[f].table.source) << " #" << escape(r["run_index"]) << "</a> " << escape(r["backend"]) << " "
-              << escape(r["mode"]) << " " << escape(r["scene"]) << ": " << verdict.symbols() << " " << escape(verdict.reasons())
-              << "</li>\n";
+      const size_t list = verdict.is_failure() ? 0 : verdict.is_approximate() ? 1 : 2;
+      ++counts[list];
+      lists[list] << "<li class=\"" << row_class(verdict) << "\"><a href=\"#" << anchor(f, i) << "\">"
+                  << escape(files[f].table.source) << " #" << escape(r["run_index"]) << "</a> " << escape(r["backend"]) << " "
+                  << escape(r["mode"]) << " " << escape(r["scene"]) << ": " << verdict.symbols() << " "
+                  << escape(verdict.reasons()) << "</li>\n";
     }
-  out << "<h2>Flagged rows</h2>\n";
-  if (flagged_count) out << "<ul>\n" << flagged.str() << "</ul>\n";
-  else out << "<p>None: every row agrees with the reference, ran its frames and was timed on a quiet machine.</p>\n";
-  thesis_tables(out, files, thesis);
+  out << "<h2 id=\"flagged\">Flagged rows</h2>\n";
+  const char* titles[3] = {"Failed what they promised", "Approximations: field hits", "Cautions"};
+  for (size_t l = 0; l < 3; ++l) {
+    out << "<h3>" << titles[l] << " (" << counts[l] << ")</h3>\n";
+    if (counts[l]) out << "<ul>\n" << lists[l].str() << "</ul>\n";
+    else out << "<p>None.</p>\n";
+  }
   if (!plots.empty()) {
     out << "<h2 id=\"plots\">Plots</h2>\n";
     for (const ReportPlot& p : plots)

@@ -80,6 +80,30 @@ TEST(RowVerdict, ARerenderThatDoesNotReproduceTheRowIsAFailure) {
   EXPECT_TRUE(v.is_failure());
 }
 
+// A sampled field's own hits (--hit field) fail the exact gate by design: within the field's
+// accuracy they are an approximation (≈, not red), beyond it or without the figure they disagree.
+TEST(RowVerdict, FieldHitsWithinTheFieldsAccuracyAreApproximateNotFailed) {
+  const std::string_view gate = "DISAGREE: hit-mask 98.7 % < 99.5 %; depth p99 0.0014 > 0.001";
+  const RowVerdict within = row_verdict(RowFacts{gate, false, false, false, "field", 1.34});
+  EXPECT_EQ(within.symbols(), "≈");
+  EXPECT_TRUE(within.is_approximate());
+  EXPECT_TRUE(within.is_caution());
+  EXPECT_FALSE(within.is_failure());
+  EXPECT_EQ(within.reasons(), "approximate: field hits, depth error 1.34 voxels (p99)");
+  EXPECT_EQ(row_verdict(RowFacts{gate, false, false, false, "field", kFieldHitVoxelBound}).symbols(), "≈");
+
+  EXPECT_EQ(row_verdict(RowFacts{gate, false, false, false, "field", kFieldHitVoxelBound * 1.01}).symbols(), "✗")
+      << "beyond the field's accuracy";
+  EXPECT_EQ(row_verdict(RowFacts{gate, false, false, false, "field", std::nullopt}).symbols(), "✗") << "no figure";
+  EXPECT_EQ(row_verdict(RowFacts{gate, false, false, false, "exact", 0.1}).symbols(), "✗") << "exact hits promise the gate";
+  EXPECT_EQ(row_verdict(RowFacts{"ok", false, false, false, "field", 0.5}).symbols(), "") << "field hits that pass the gate";
+  // Other marks keep their colour: an approximate row with validation messages is red.
+  const RowVerdict validated = row_verdict(RowFacts{"DISAGREE: hit (2 validation messages)", true, false, false, "field", 1.0});
+  EXPECT_EQ(validated.symbols(), "V ≈ †");
+  EXPECT_TRUE(validated.is_failure());
+  EXPECT_FALSE(validated.is_approximate());
+}
+
 TEST(RowVerdict, ReadsTheCsvColumnsAndOlderCsvsWithoutBusy) {
   CsvTable t;
   t.columns = {"agreement", "budget_cut", "busy"};
@@ -93,10 +117,18 @@ TEST(RowVerdict, ReadsTheCsvColumnsAndOlderCsvsWithoutBusy) {
   older.columns = {"agreement", "budget_cut"};
   older.rows = {{"DISAGREE: hit", "1"}};
   EXPECT_EQ(row_verdict(older, older.rows[0]).symbols(), "✗ †");
+
+  CsvTable field;
+  field.columns = {"agreement", "hit", "depth_p99_voxels"};
+  field.rows = {{"DISAGREE: hit", "field", "1.5"}, {"DISAGREE: hit", "field", "2.5"}, {"DISAGREE: hit", "field", "nan"},
+                {"DISAGREE: hit", "field", "1.5x"}, {"DISAGREE: hit", "exact", "1.5"}};
+  const std::vector<std::string> expected = {"≈", "✗", "✗", "✗", "✗"};
+  for (size_t i = 0; i < field.rows.size(); ++i) EXPECT_EQ(row_verdict(field, field.rows[i]).symbols(), expected[i]) << i;
 }
 
-// One mode, one scene: the reference and one vk-rt row whose agreement is `agreement`.
-CsvTable two_rows(const std::string& agreement, bool budget_cut = false) {
+// One mode, one scene: the reference and one vk-rt row whose agreement is `agreement` (or, with
+// `field_voxels`, one sdf-global row of field hits with that depth error).
+CsvTable two_rows(const std::string& agreement, bool budget_cut = false, std::optional<double> field_voxels = std::nullopt) {
   CsvTable t;
   t.columns = measurement_columns();
   t.source = "rows.csv";
@@ -113,10 +145,15 @@ CsvTable two_rows(const std::string& agreement, bool budget_cut = false) {
     m.fps = fps;
     m.agreement = row_agreement;
     m.budget_cut = cut;
-    t.rows.push_back(to_csv_fields(m));
+    std::vector<std::string> fields = to_csv_fields(m);
+    if (field_voxels && backend != "embree") {
+      fields[t.column("hit")] = "field";
+      fields[t.column("depth_p99_voxels")] = std::to_string(*field_voxels);
+    }
+    t.rows.push_back(fields);
   };
   add("embree", 300, "reference", false);
-  add("vk-rt", 5, agreement, budget_cut);
+  add(field_voxels ? "sdf-global" : "vk-rt", 5, agreement, budget_cut);
   return t;
 }
 
@@ -150,6 +187,7 @@ TEST(RowVerdictViews, MarkdownHtmlAndExitStatusAgreeOnEveryKindOfRow) {
     bool budget_cut;
     std::string cell, row_class;
     int exit_status;
+    std::optional<double> field_voxels = std::nullopt;
   };
   const std::vector<Case> cases = {
       {"ok", false, "5.00", "", 0},
@@ -158,10 +196,12 @@ TEST(RowVerdictViews, MarkdownHtmlAndExitStatusAgreeOnEveryKindOfRow) {
       {"TRUNCATED: 200 pixels", false, "5.00 ✂", "bad", kExitRowsDisagree},
       {"DISAGREE: hit (2 validation messages)", true, "5.00 ✗ V †", "bad", kExitRowsDisagree},
       {"ERROR: out of device memory", false, "ERROR", "bad", kExitRowsFailed},
+      {"DISAGREE: hit 98.10 % < 99.50 %", false, "5.00 ≈", "approx", 0, 1.5},
+      {"DISAGREE: hit 98.10 % < 99.50 %", false, "5.00 ✗", "bad", kExitRowsDisagree, 3.0},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.agreement + (c.budget_cut ? ", budget cut" : ""));
-    const CsvTable t = two_rows(c.agreement, c.budget_cut);
+    const CsvTable t = two_rows(c.agreement, c.budget_cut, c.field_voxels);
     const std::string md = markdown_report(t, ThesisTables::load_default());
     EXPECT_NE(md.find("| bunny | 1 | 300 | " + c.cell + " |"), std::string::npos) << md;
     const std::string html = html_of(t);
