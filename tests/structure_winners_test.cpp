@@ -89,6 +89,14 @@ TEST(StructureWinners, RunsAreNeverMixed) {
   ASSERT_EQ(w.groups.size(), 2u) << "the same scene in two runs is two groups";
   EXPECT_EQ(w.kinds[*w.groups[0].winner], "compute BVH");
   EXPECT_EQ(w.kinds[*w.groups[1].winner], "SDF, exact hits");
+
+  CsvTable merged = a;  // `merge --several-runs`: b's rows with their own run_id in a's file
+  for (auto row : b.rows) {
+    row[b.column("run_id")] = "second-run";
+    merged.rows.push_back(row);
+  }
+  const std::vector<const CsvTable*> one = {&merged};
+  EXPECT_EQ(structure_winners(one, [&](size_t f, size_t r) { return plain_verdict(one, f, r); }).groups.size(), 2u);
 }
 
 TEST(StructureWinners, TheReportOpensWithTheAnswerAndListsApproximationsApart) {
