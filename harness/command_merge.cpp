@@ -1,6 +1,7 @@
 // `sdfbench merge`: join the CSVs of one run's shards into one, checking that they have the
 // same columns and run id, valid run indices, and do not measure a configuration twice.
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <map>
 
@@ -33,6 +34,24 @@ void check_same_run(const CsvTable& t, const CsvTable& first) {
                   "; merge the shards of one run (a shard folder may hold files of an earlier run)");
 }
 
+// A kept image's path is relative to its CSV's folder (--keep-images): rebased onto the merged
+// CSV's folder, so that the merged file names the same images (and `report` finds them).
+void rebase_image_paths(CsvTable& t, const std::filesystem::path& from_csv, const std::filesystem::path& to_csv) {
+  namespace fs = std::filesystem;
+  const fs::path from = fs::weakly_canonical(fs::absolute(from_csv)).parent_path();
+  const fs::path to = fs::weakly_canonical(fs::absolute(to_csv)).parent_path();
+  if (from == to) return;
+  for (const char* name : {"frame_image", "reference_image", "diff_image"}) {
+    if (!t.has_column(name)) continue;
+    const size_t column = t.column(name);
+    for (auto& row : t.rows) {
+      std::string& value = row[column];
+      if (value.empty() || fs::path(value).is_absolute()) continue;  // an absolute path: report refuses it, named
+      value = (from / value).lexically_normal().lexically_relative(to).string();
+    }
+  }
+}
+
 void run_merge(const MergeArgs& args) {
   check_output_path(args.csv, "--csv");
   if (!args.markdown.empty()) check_output_path(args.markdown, "--markdown");
@@ -48,6 +67,7 @@ void run_merge(const MergeArgs& args) {
   std::map<std::string, std::string> seen;                         // configuration key -> file
   for (const std::string& path : args.inputs) {
     CsvTable t = read_csv(path);
+    rebase_image_paths(t, path, args.csv);
     if (merged.columns.empty()) merged.columns = t.columns;
     if (t.columns != merged.columns)
       throw Error("'" + path + "' has other columns than '" + args.inputs.front() + "': cannot merge them");

@@ -61,6 +61,26 @@ struct KeptTable {
   std::string field(size_t row, const char* column) const { return rows.rows.at(row)[rows.column(column)]; }
 };
 
+// `merge` of CSVs in another folder than the merged one: each image path is rebased onto the
+// merged CSV's folder, so that it names the same file and the report takes it.
+TEST(KeepImages, MergeRebasesImagePathsOntoTheMergedCsvsFolder) {
+  KeptTable t;  // out/t.csv with out/kept/...
+  const fs::path merged = t.dir.path() / "m.csv";
+  const test::CommandResult m = test::run_sdfbench("merge " + t.csv.string() + " --csv " + merged.string());
+  ASSERT_EQ(m.exit_code, 0) << m.output;
+  const CsvTable rows = read_csv(merged);
+  ASSERT_EQ(rows.rows.size(), 4u);
+  for (size_t r = 0; r < rows.rows.size(); ++r) {
+    const std::string path = rows.rows[r][rows.column("frame_image")];
+    EXPECT_EQ(path, "out/" + t.field(r, "frame_image")) << "row " << r;
+    EXPECT_TRUE(fs::exists(merged.parent_path() / path)) << path;
+  }
+  const test::CommandResult report =
+      test::run_sdfbench("report " + merged.string() + " --out " + (t.dir.path() / "page.html").string());
+  EXPECT_EQ(report.exit_code, 0) << report.output;
+  EXPECT_NE(report.output.find("4 rows with kept images"), std::string::npos) << report.output;
+}
+
 TEST(KeepImages, EveryRowNamesItsThreeCheckImagesBesideTheCsv) {
   KeptTable t;
   ASSERT_EQ(t.rows.rows.size(), 4u);

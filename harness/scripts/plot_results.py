@@ -265,8 +265,8 @@ def global_sweep(rows, out_dir):
     for k, ((fmt, band, hit), group) in enumerate(sorted(lines.items())):
         color = plt.cm.tab10(k % 10)
         for ax, (metric, _, scale) in zip(axes, metrics):
-            points = sorted((number(r["global_voxel"]), number(r[metric]) * scale, r) for r in group
-                            if number(r[metric]) is not None)
+            points = sorted(((number(r["global_voxel"]), number(r[metric]) * scale, r) for r in group
+                             if number(r[metric]) is not None), key=lambda p: p[:2])
             line, = ax.plot([p[0] for p in points], [p[1] for p in points], "-" if hit == "exact" else "--", marker="o",
                             color=color, label=f"{fmt}, band {band}, {hit} hits")
             for x, y, r in points:
@@ -329,7 +329,8 @@ def brick_sweep(rows, out_dir):
         style = "-" if hit == "exact" else "--"
         color = plt.cm.tab20(k % 20)
         for ax, metric in zip(axes, ("mrays_per_s", "depth_p99_voxels")):
-            points = sorted((number(r["voxels"]), number(r[metric]), r) for r in group if number(r[metric]) is not None)
+            points = sorted(((number(r["voxels"]), number(r[metric]), r) for r in group if number(r[metric]) is not None),
+                            key=lambda p: p[:2])
             if not points:
                 continue
             line, = ax.plot([p[0] for p in points], [p[1] for p in points], style, marker="o", color=color, label=label)
@@ -351,9 +352,20 @@ def brick_sweep(rows, out_dir):
 
 
 def sweep_heatmaps(rows, out_dir):
-    sweep = [r for r in rows if r["table"] == "sweep" and usable(r) and not is_brick_sweep(r) and not is_global_sweep(r)]
-    if not sweep:
-        return
+    # One heat map per sweep run over the hash cell and octree depth (other sweeps' rows, e.g. a
+    # sweep of another axis at one cell and depth, would land in the same cells).
+    candidates = [r for r in rows if r["table"] == "sweep" and usable(r) and not is_brick_sweep(r) and not is_global_sweep(r)
+                  and r.get("hash_cell") and r.get("octree_depth")]
+    runs = {}
+    for r in candidates:
+        runs.setdefault(r.get("run_id", ""), []).append(r)
+    sweeps = [rs for rs in runs.values()
+              if len({r["hash_cell"] for r in rs}) > 1 or len({r["octree_depth"] for r in rs}) > 1]
+    for n, sweep in enumerate(sweeps):
+        heatmap(sweep, out_dir, "" if n == 0 else f"_{n + 1}")
+
+
+def heatmap(sweep, out_dir, suffix):
     cells = sorted({float(r["hash_cell"]) for r in sweep})
     depths = sorted({int(float(r["octree_depth"])) for r in sweep})
     for metric, title in (("fps", "FPS"), ("steps_per_ray", "sphere-tracing steps per ray"),
@@ -377,7 +389,7 @@ def sweep_heatmaps(rows, out_dir):
         ax.set_ylabel("octree depth")
         ax.set_title(f"{title}: {sweep[0]['scene']}, {sweep[0]['backend']} {sweep[0]['mode']}", fontsize=9)
         fig.colorbar(image, ax=ax)
-        save(fig, os.path.join(out_dir, f"sweep_{metric}.png"))
+        save(fig, os.path.join(out_dir, f"sweep_{metric}{suffix}.png"))
 
 
 def main():

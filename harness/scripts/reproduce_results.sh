@@ -313,6 +313,7 @@ csvs=()
 for f in "$dir"/*.csv; do [[ -f $f ]] && csvs+=("$f"); done
 [[ ${#csvs[@]} -gt 0 ]] || die "no CSV in $dir"
 if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then
+  mkdir -p "$dir/plots"
   /usr/bin/python3 harness/scripts/plot_results.py "${csvs[@]}" --out-dir "$dir/plots" >"$record/plots.log" 2>&1 ||
     die "plot_results.py failed; see $record/plots.log"
   plots=(--plots "$dir/plots")
