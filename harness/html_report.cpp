@@ -216,8 +216,8 @@ void winners_section(std::ostringstream& out, const std::vector<ReportFile>& fil
          "fraction of the group's winner (the winner: its margin over the next kind), structure MB and build seconds; "
          "where the winner runs on the CPU (Embree), the fastest kind on the Vulkan device is named too. "
          "Rows that failed what they promised (red) are left out and counted; field hits (≈) are approximations, "
-         "shown in their own kind and never the winner. Speeds compare only within a group: each group is one run "
-         "on one machine.</p>\n";
+         "shown in their own kind and never the winner. Speeds compare only within a group: each group is one file, "
+         "one machine.</p>\n";
   bool any = false;
   for (size_t f = 0; f < files.size(); ++f) {
     std::vector<const WinnerGroup*> groups;

@@ -44,14 +44,14 @@ StructureWinners structure_winners(const std::vector<const CsvTable*>& files,
       return t.has_column(column) ? t.rows[row][t.column(column)] : std::string();
     };
     const auto speed = [&](size_t row) { return std::atof(text(row, "mrays_per_s").c_str()); };
-    // (run, scene, mode, size) -> group: a merged file's runs are never set side by side
-    std::map<std::tuple<std::string, std::string, std::string, std::string>, size_t> index;
+    // (scene, mode, size) -> group; a merged file's runs (e.g. one sweep per backend) ran one
+    // after the other on one machine and are set side by side, as the merge asked
+    std::map<std::tuple<std::string, std::string, std::string>, size_t> index;
     for (size_t r = 0; r < t.rows.size(); ++r) {
       const std::string kind = competing_kind(text(r, "backend"), text(r, "hit"));
       if (kind.empty()) continue;
       const std::string size = text(r, "width") + "x" + text(r, "height");
-      auto [at, added] = index.try_emplace(std::make_tuple(text(r, "run_id"), text(r, "scene"), text(r, "mode"), size),
-                                        out.groups.size());
+      auto [at, added] = index.try_emplace(std::make_tuple(text(r, "scene"), text(r, "mode"), size), out.groups.size());
       if (added) {
         out.groups.push_back({f, text(r, "scene"), text(r, "mode"), size, text(r, "overlap"), {}, 0, std::nullopt});
         best_by_kind.emplace_back();

@@ -1,5 +1,6 @@
 #pragma once
-// "Which structure wins where", made from result rows: the rows of one run (file and run_id) that measured the same
+// "Which structure wins where", made from result rows: the rows of one file (one run, or the runs a
+// `merge --several-runs` joined, one after the other on one machine) that measured the same
 // scene, mode and frame size form a group (their ratios were measured side by side), and in each
 // group the fastest row of each kind of method (Embree, a compute BVH, the driver's ray tracing,
 // SDF with exact hits, SDF with a sampled field's own hits, triangles without a hierarchy) is

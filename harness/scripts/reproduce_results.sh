@@ -309,8 +309,10 @@ for step in "${todo[@]}"; do
 done
 
 # ---- Plots, the report, the commands beside the files ----
-csvs=()
-for f in "$dir"/*.csv; do [[ -f $f ]] && csvs+=("$f"); done
+csvs=()  # in the steps' order, so that the report reads as the plan does
+for step in "${steps[@]}"; do
+  while read -r output; do [[ $output == *.csv && $output != parts/* ]] && csvs+=("$dir/$output"); done < <(cat "$record/$step.outputs" 2>/dev/null || true)
+done
 [[ ${#csvs[@]} -gt 0 ]] || die "no CSV in $dir"
 if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then
   mkdir -p "$dir/plots"
