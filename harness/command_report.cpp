@@ -105,7 +105,10 @@ void write_report(const ReportArgs& args, std::vector<ReportFile>& files, const 
       const std::string where = "'" + t.source + "' row " + std::to_string(row + 1);
       auto field = [&](const char* column) { return t.has_column(column) ? t.rows[row][t.column(column)] : std::string(); };
       const bool failed = row_verdict(t, t.rows[row]).is_error();
-      if (!field("frame_image").empty()) {
+      // Images the row names but that are not there (a snapshot commits its page's copies, not
+      // the run's kept images) are missing images: rendered again with --render-missing.
+      const bool kept_here = !field("frame_image").empty() && kept_images_present(t, row);
+      if (kept_here) {
         images = kept_images(t, row, store);
         images.note = "kept by the run";
         ++kept;
@@ -123,7 +126,8 @@ void write_report(const ReportArgs& args, std::vector<ReportFile>& files, const 
         ++rendered;
         mismatched += images.mismatch;
       } else {
-        images.note = "no images kept (table/sweep --keep-images, or report --render-missing)";
+        images.note = field("frame_image").empty() ? "no images kept (table/sweep --keep-images, or report --render-missing)"
+                                                   : "the kept images are not here (report --render-missing renders them)";
         ++without;
       }
       file.images.push_back(std::move(images));

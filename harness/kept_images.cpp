@@ -57,4 +57,14 @@ RowImages kept_images(const CsvTable& t, size_t row, ImageStore& store) {
   return images;
 }
 
+bool kept_images_present(const CsvTable& t, size_t row) {
+  const std::string where = "'" + t.source + "' row " + std::to_string(row + 1);
+  for (const char* column : {"frame_image", "reference_image", "diff_image"}) {
+    const std::string name = t.has_column(column) ? t.rows[row][t.column(column)] : std::string();
+    std::error_code ec;
+    if (!fs::exists(image_in_csv_folder(t, name, where + ": " + column), ec)) return false;
+  }
+  return true;
+}
+
 }  // namespace sdfbench

@@ -81,6 +81,22 @@ TEST(KeepImages, MergeRebasesImagePathsOntoTheMergedCsvsFolder) {
   EXPECT_NE(report.output.find("4 rows with kept images"), std::string::npos) << report.output;
 }
 
+// A snapshot commits its page's copies, not the run's kept images: a CSV whose kept images are
+// not there reads as rows without images, and --render-missing renders and checks them again.
+TEST(KeepImages, KeptImagesThatAreNotThereAreRenderedAgainOnRequest) {
+  KeptTable t;
+  fs::remove_all(t.dir.path() / "out" / "kept");
+  const fs::path page = t.dir.path() / "page.html";
+  const test::CommandResult plain = test::run_sdfbench("report " + t.csv.string() + " --out " + page.string());
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_NE(plain.output.find("0 rows with kept images, 0 re-rendered, 4 without images"), std::string::npos) << plain.output;
+  EXPECT_NE(read_text(page).find("the kept images are not here"), std::string::npos);
+  const test::CommandResult again = test::run_sdfbench("report " + t.csv.string() + " --render-missing --out " + page.string());
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("4 re-rendered,"), std::string::npos) << again.output;
+  EXPECT_EQ(again.output.find("whose figures differ"), std::string::npos) << again.output;
+}
+
 TEST(KeepImages, EveryRowNamesItsThreeCheckImagesBesideTheCsv) {
   KeptTable t;
   ASSERT_EQ(t.rows.rows.size(), 4u);

@@ -93,6 +93,7 @@ fi
 
 # ---- What runs, checked before any work ----
 [[ -x $binary ]] || die "--binary '$binary' is not an executable (build first: harness/scripts/build.sh)"
+binary=$(realpath "$binary")
 head=$(git rev-parse --short=12 HEAD 2>/dev/null) || die "not in a git checkout: the rows could name no commit"
 version=$("$binary" info 2>/dev/null | sed -n '1s/^.*(commit \(.*\))$/\1/p')
 [[ -n $version ]] || die "'$binary info' names no commit"
@@ -123,6 +124,15 @@ if [[ -f $record/run ]]; then
   [[ $prev_cpu == "$cpu" ]] || die "$dir holds a run on another CPU ($prev_cpu; this is $cpu): --fresh to start over"
   echo "reproduce_results: resuming the run in $dir" >&2
 else
+  # A new run into a folder that holds results of another (a committed snapshot, a checkout's old
+  # files) would resume their CSVs: move them away first (results/history/ keeps old snapshots).
+  old=$(find "$dir" -maxdepth 1 \( -name '*.csv' -o -name '*.txt' \) -print -quit)
+  if [[ -n $old && -f $dir/COMMANDS.md ]]; then  # a snapshot this script wrote (git keeps the committed one)
+    echo "reproduce_results: replacing the snapshot in $dir" >&2
+    rm -rf "${dir:?}"/*.csv "$dir"/*.md "$dir"/*.txt "$dir"/plots "$dir"/report.html "$dir"/report_files "$dir"/images "$dir"/parts
+    old=
+  fi
+  [[ -z $old ]] || die "$dir holds results of another run ($(basename "$old"), ...): move them away (e.g. git mv to results/history/) or give another --out"
   mkdir -p "$record"
   printf 'version %s\ncpu %s\nstarted %s\nquick %s\n' "$version" "$cpu" "$(date -u +%FT%TZ)" "$quick" >"$record/run"
 fi
@@ -311,19 +321,21 @@ done
 # ---- Plots, the report, the commands beside the files ----
 csvs=()  # in the steps' order, so that the report reads as the plan does
 for step in "${steps[@]}"; do
-  while read -r output; do [[ $output == *.csv && $output != parts/* ]] && csvs+=("$dir/$output"); done < <(cat "$record/$step.outputs" 2>/dev/null || true)
+  while read -r output; do [[ $output == *.csv && $output != parts/* ]] && csvs+=("$output"); done < <(cat "$record/$step.outputs" 2>/dev/null || true)
 done
 [[ ${#csvs[@]} -gt 0 ]] || die "no CSV in $dir"
 if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then
   mkdir -p "$dir/plots"
-  /usr/bin/python3 harness/scripts/plot_results.py "${csvs[@]}" --out-dir "$dir/plots" >"$record/plots.log" 2>&1 ||
+  (cd "$dir" && /usr/bin/python3 "$OLDPWD/harness/scripts/plot_results.py" "${csvs[@]}" --out-dir plots) >"$record/plots.log" 2>&1 ||
     die "plot_results.py failed; see $record/plots.log"
-  plots=(--plots "$dir/plots")
+  plots=(--plots plots)
 else
   echo "reproduce_results: python3-matplotlib is missing: no plots" >&2
   plots=()
 fi
-"$binary" report "${csvs[@]}" "${plots[@]}" --out "$dir/report.html" >"$record/report.log" 2>&1 || die "sdfbench report failed; see $record/report.log"
+# (from the folder, so that the page names the files as they sit beside it)
+(cd "$dir" && "$binary" report "${csvs[@]}" "${plots[@]}" --out report.html) >"$record/report.log" 2>&1 ||
+  die "sdfbench report failed; see $record/report.log"
 {
   echo "# $(basename "$0") at $version on '$name' ($cpu), $(date -u +%FT%TZ)"
   echo "# each file and the commands that made it ('sdfbench' is $binary; paths relative to this folder)"
