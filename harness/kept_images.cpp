@@ -62,9 +62,9 @@ bool kept_images_present(const CsvTable& t, size_t row) {
   for (const char* column : {"frame_image", "reference_image", "diff_image"}) {
     const std::string name = t.has_column(column) ? t.rows[row][t.column(column)] : std::string();
     std::error_code ec;
-    if (!fs::exists(image_in_csv_folder(t, name, where + ": " + column), ec)) return false;
+    if (fs::exists(image_in_csv_folder(t, name, where + ": " + column), ec)) return true;
   }
-  return true;
+  return false;  // none of the three: not kept here (one or two gone is a broken row: kept_images names it)
 }
 
 }  // namespace sdfbench

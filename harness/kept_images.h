@@ -15,7 +15,7 @@ namespace sdfbench {
 // the CSV, the row and the column.
 RowImages kept_images(const CsvTable& table, size_t row, ImageStore& store);
 
-// Whether the row's three image files are there (a committed snapshot keeps its report's copies,
+// Whether any of the row's three image files is there (a committed snapshot keeps its report's copies,
 // not the run's kept images: `report --render-missing` renders those again). Throws Error as
 // kept_images() does for a path outside the CSV's folder.
 bool kept_images_present(const CsvTable& table, size_t row);
