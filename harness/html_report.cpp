@@ -200,7 +200,7 @@ std::string cell(const Row& r, const std::string& column, int digits) {
   return r[column].empty() ? "–" : r[column] == "inf" ? "∞" : fixed(r.number(column), digits);
 }
 
-// The answer first: per run, scene, mode and size, the fastest row of each kind of method with
+// The answer first: per file, scene, mode and size, the fastest row of each kind of method with
 // its ratio to the group's winner, memory, build time and verdict (harness/structure_winners.h).
 void winners_section(std::ostringstream& out, const std::vector<ReportFile>& files) {
   std::vector<const CsvTable*> tables;
@@ -211,7 +211,7 @@ void winners_section(std::ostringstream& out, const std::vector<ReportFile>& fil
   const auto kinds_present = [](const WinnerGroup& g) {
     return std::count_if(g.best.begin(), g.best.end(), [](const auto& b) { return b.has_value(); });
   };
-  out << "<h2 id=\"wins\">Which structure wins where</h2>\n<p>Rows of one run that measured the same scene, mode and "
+  out << "<h2 id=\"wins\">Which structure wins where</h2>\n<p>Rows of one file that measured the same scene, mode and "
          "frame size, side by side: for each kind of method its fastest configuration, with Mrays/s, its speed as a "
          "fraction of the group's winner (the winner: its margin over the next kind), structure MB and build seconds; "
          "where the winner runs on the CPU (Embree), the fastest kind on the Vulkan device is named too. "
@@ -236,10 +236,7 @@ void winners_section(std::ostringstream& out, const std::vector<ReportFile>& fil
     for (const WinnerGroup* g : groups) {
       const auto speed = [&](size_t row) { return Row{&t, row}.number("mrays_per_s"); };
       const double top = g->winner ? speed(*g->best[*g->winner]) : 0;
-      double next = 0;  // the best speed of the other non-approximate kinds
-      for (size_t k = 0; k < g->best.size(); ++k)
-        if (g->best[k] && k != g->winner && !verdict_of(Row{&t, *g->best[k]}, files[f].images[*g->best[k]]).is_approximate())
-          next = std::max(next, speed(*g->best[k]));
+      const double next = g->runner_up ? speed(*g->best[*g->runner_up]) : 0;
       out << "<tr><th>" << escape(g->scene) << (g->overlap.empty() ? "" : "<br><span class=\"param\">overlap " + escape(g->overlap) + "</span>")
           << (g->failed ? "<br><span class=\"why\">" + std::to_string(g->failed) + " failed row(s) left out</span>" : "")
           << "</th><td>" << escape(g->mode) << "</td><td>" << escape(g->size) << "</td>";

@@ -19,6 +19,11 @@ const std::vector<std::pair<std::string, std::string>>& named_kinds() {
   return kinds;
 }
 
+// A row's Mrays/s (0 where the CSV has none).
+double mrays(const CsvTable& t, size_t row) {
+  return t.has_column("mrays_per_s") ? std::atof(t.rows[row][t.column("mrays_per_s")].c_str()) : 0.0;
+}
+
 }  // namespace
 
 std::string competing_kind(const std::string& backend, const std::string& hit) {
@@ -43,7 +48,7 @@ StructureWinners structure_winners(const std::vector<const CsvTable*>& files,
     const auto text = [&](size_t row, const char* column) -> std::string {
       return t.has_column(column) ? t.rows[row][t.column(column)] : std::string();
     };
-    const auto speed = [&](size_t row) { return std::atof(text(row, "mrays_per_s").c_str()); };
+    const auto speed = [&](size_t row) { return mrays(t, row); };
     // (scene, mode, size) -> group; a merged file's runs (e.g. one sweep per backend) ran one
     // after the other on one machine and are set side by side, as the merge asked
     std::map<std::tuple<std::string, std::string, std::string>, size_t> index;
@@ -73,9 +78,8 @@ StructureWinners structure_winners(const std::vector<const CsvTable*>& files,
   for (size_t g = 0; g < out.groups.size(); ++g) {
     WinnerGroup& group = out.groups[g];
     const CsvTable& t = *files[group.file];
-    const auto speed = [&](size_t row) {
-      return t.has_column("mrays_per_s") ? std::atof(t.rows[row][t.column("mrays_per_s")].c_str()) : 0.0;
-    };
+    const auto speed = [&](size_t row) { return mrays(t, row); };
+    const auto faster = [&](size_t k, const std::optional<size_t>& than) { return !than || speed(*group.best[k]) > speed(*group.best[*than]); };
     group.best.resize(out.kinds.size());
     for (size_t k = 0; k < out.kinds.size(); ++k) {
       const auto found = best_by_kind[g].find(out.kinds[k]);
@@ -83,10 +87,13 @@ StructureWinners structure_winners(const std::vector<const CsvTable*>& files,
       group.best[k] = found->second;
       // An approximation (field hits) is shown in its own kind but does not win: its image is not the reference's.
       if (verdict(group.file, found->second).is_approximate()) continue;
-      if (!group.winner || speed(found->second) > speed(*group.best[*group.winner])) group.winner = k;
-      if (backend_info(t.rows[found->second][t.column("backend")]).vulkan &&
-          (!group.vulkan_winner || speed(found->second) > speed(*group.best[*group.vulkan_winner])))
-        group.vulkan_winner = k;
+      if (faster(k, group.winner)) {
+        group.runner_up = group.winner;
+        group.winner = k;
+      } else if (faster(k, group.runner_up)) {
+        group.runner_up = k;
+      }
+      if (backend_info(t.rows[found->second][t.column("backend")]).vulkan && faster(k, group.vulkan_winner)) group.vulkan_winner = k;
     }
   }
   return out;

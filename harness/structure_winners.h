@@ -28,6 +28,7 @@ struct WinnerGroup {
   std::vector<std::optional<size_t>> best;  // per StructureWinners::kinds: the fastest row of that kind
   size_t failed = 0;                        // rows left out for a red verdict
   std::optional<size_t> winner;             // the kind index of the fastest best row that is no approximation
+  std::optional<size_t> runner_up;          // the next fastest such kind (the winner's margin is over it)
   std::optional<size_t> vulkan_winner;      // ... among rows whose backend runs on the Vulkan device
 };
 
