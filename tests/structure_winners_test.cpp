@@ -3,6 +3,8 @@
 // fail competes; approximations (field hits) are shown but never win.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "harness/html_report.h"
 #include "harness/measurement.h"
 #include "harness/structure_winners.h"
