@@ -188,10 +188,10 @@ void check_ply(std::span<const std::byte> file, const std::string& where) {
       if (t.size() != 1 || t[0] != "ply") fail("expected 'ply' (not a PLY file)");
       continue;
     }
-    // Debian 13's assimp (5.4) reads a comment whose text starts with a digit right after one space
-    // as a count ("comment 4294967295 x": a 100 GB allocation), Debian 12's skips it: refused, so
-    // that the file means one thing everywhere.
-    if (line.size() > 8 && line.substr(0, 8) == "comment " && std::isdigit(static_cast<unsigned char>(line[8])))
+    // Debian 13's assimp (5.4) reads a comment whose text starts with a digit as a count
+    // ("comment 4294967295 x", with or without indentation: a 100 GB allocation), Debian 12's skips
+    // it: refused, so that the file means one thing everywhere.
+    if (t.size() > 1 && t[0] == "comment" && std::isdigit(static_cast<unsigned char>(t[1][0])))
       fail("a comment that starts with a number ('" + printable(std::string(line.substr(0, 40))) +
            "'): assimp 5.4 reads it as a count; put a word first");
     if (t.empty() || t[0] == "comment" || t[0] == "obj_info") continue;

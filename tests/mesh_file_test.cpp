@@ -85,6 +85,8 @@ TEST(MeshFile, HostileFilesAreErrorsNamingThePart) {
   // A comment that Debian 13's assimp reads as a count (a 100 GB allocation there; the fuzz found it).
   expect_error(dir.write("comment.ply", edited("cube.ply", "comment a unit cube", "comment 4294967295 a unit cube")),
                "a comment that starts with a number");
+  expect_error(dir.write("indented.ply", edited("cube.ply", "comment a unit cube", " comment 18446744073709551615a cube")),
+               "a comment that starts with a number");
   // OFF: counts beyond the limit and beyond the file.
   expect_error(dir.write("huge.off", edited("cube.off", "8 12 0", "353535235358 6 0")), "declares 353535235358 vertices");
   expect_error(dir.write("short.off", edited("cube.off", "8 12 0", "8000 12000 0")), "truncated");
