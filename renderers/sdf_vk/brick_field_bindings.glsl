@@ -16,7 +16,7 @@ float brick_filtered(uint slot, vec3 local) {
                   slot / (sdf.atlas_bricks.x * sdf.atlas_bricks.y));
   return textureLod(brick_atlas, (vec3(b * 8u) + local + 0.5f) * sdf.atlas_inverse_size.xyz, 0.0f).x;
 }
-float brick_filter_slack(float voxel, float band) { return sdf.options.z * voxel + band * (1.0f / 1024.0f); }
+float brick_filter_slack(float voxel, float band) { return sdf.options.z * voxel + sdf.options.w * band; }
 #else
 layout(binding = 20) uniform textureBuffer brick_atlas;     // R32F / R16F / R8_UNORM, 8^3 samples per stored brick
 float brick_value(int i) { return texelFetch(brick_atlas, i).x; }

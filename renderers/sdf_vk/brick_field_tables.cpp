@@ -67,6 +67,11 @@ BrickFieldTables::BrickFieldTables(const VulkanContext& context, const BrickGpuA
     // The sampler's weights have subTexelPrecisionBits: its sample is the exact trilinear at a point
     // up to sqrt(3) 2^-bits voxels away (twice that, for the slack's own change over that way).
     params.options.z = 2.0f * std::sqrt(3.0f) * std::ldexp(1.0f, -int(context.properties().limits.subTexelPrecisionBits));
+    // ... and its result has a precision of its own: a UNORM8 image may be filtered in 8-bit fixed
+    // point, three rounds of lerps each off by up to a step (lavapipe's is: 1.35 steps from the exact
+    // trilinear at most over 24685 points, tests/brick_sampler_probe_test.cpp, where 1/1024 of the
+    // band failed), so u8 allows three steps of 2 band / 255; the float formats 1/1024 of the band.
+    params.options.w = arrays.format == sdf::SdfFormat::u8 ? 6.0f / 255.0f : 1.0f / 1024.0f;
     image_ = GpuImage3D(context, image.extent, format, sample_bytes, image.texels.data(), "brick atlas");
   } else {
     atlas_ = upload_table(context, arrays.atlas, format, sample_bytes, false, "brick atlas", hint);

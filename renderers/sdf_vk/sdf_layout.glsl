@@ -13,7 +13,8 @@ struct SdfParams {
                      // z: --hit-footprint (exact: the hit threshold as a fraction of a pixel's footprint),
                      // w: 0 (a zero the compiler cannot see: SDF_REPEAT_* in sdf_scene_distance.glsl)
   vec4 options;      // x: --over-relax omega (1: off); sdf-bricks: y: the hit tolerance of rays leaving
-                     // a hit (mesh_hit_tolerance), z: the sampler's filter slack in voxels; w: 0
+                     // a hit (mesh_hit_tolerance), z: the sampler's filter slack in voxels; w: the precision of its result,
+                     // a fraction of the band (brick_filter_slack)
   uvec4 atlas_bricks;       // sdf-bricks with --brick-fetch sampler: bricks per image row (x) and slice (y); zw: 0
   vec4 atlas_inverse_size;  // its 1 / image extent (xyz); w: 0
 };
