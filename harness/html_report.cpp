@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <set>
@@ -44,6 +45,13 @@ std::string fixed(double v, int digits) {
   char text[32];
   std::snprintf(text, sizeof text, "%.*f", digits, v);
   return text;
+}
+
+// A speed ratio with two decimals, or two significant digits below 0.01 (a 500x slower tracer
+// reads 0.0020x, not 0.00x).
+std::string ratio_text(double ratio) {
+  const int digits = ratio > 0 && ratio < 0.01 ? std::min(6, 1 - int(std::floor(std::log10(ratio)))) : 2;
+  return fixed(ratio, digits);
 }
 
 std::string fps_text(double fps) { return fixed(fps, fps >= 100 ? 0 : fps >= 10 ? 1 : fps >= 1 ? 2 : 3); }
@@ -250,7 +258,7 @@ void winners_section(std::ostringstream& out, const std::vector<ReportFile>& fil
         // (streamed, not concatenated: GCC 12 gives a false -Wrestrict on "<literal>" + std::string, GCC bug 105651)
         std::ostringstream ratio;
         if (won) ratio << "winner" << (next > 0 ? ", " + fixed(v / next, 2) + "x the next" : std::string());
-        else if (top > 0) ratio << fixed(v / top, 2) << "x the winner";
+        else if (top > 0) ratio << ratio_text(v / top) << "x the winner";
         if (!won && g->vulkan_winner == k) ratio << "; fastest on the Vulkan device";
         out << "<td class=\"" << (won ? "win" : row_class(verdict)) << "\"><a href=\"#" << anchor(f, row) << "\">"
             << (won ? "<b>" : "") << escape(r["backend"]) << (won ? "</b>" : "") << "</a> " << cell(r, "mrays_per_s", 3)
