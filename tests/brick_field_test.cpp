@@ -16,21 +16,14 @@
 #include "renderers/sdf_vk/brick_gpu_arrays.h"
 #include "renderers/work_counters.h"
 #include "scenes/thesis_layout.h"
+#include "tests/brick_field_cases.h"
 #include "tests/test_support.h"
 #include "util/error.h"
 
 namespace sdfbench {
 namespace {
 
-struct FieldCase {
-  const char* mesh;
-  uint32_t voxels;
-  sdf::SdfFormat format;
-};
-
-std::string case_name(const testing::TestParamInfo<FieldCase>& info) {
-  return std::string(info.param.mesh) + "_" + std::to_string(info.param.voxels) + "_" + sdf::to_string(info.param.format);
-}
+using test::FieldCase;
 
 class BrickFieldVsBruteForce : public testing::TestWithParam<FieldCase> {};
 
@@ -113,7 +106,7 @@ TEST_P(BrickFieldVsBruteForce, LatticeSamplesAreTheClampedExactDistance) {
 INSTANTIATE_TEST_SUITE_P(Meshes, BrickFieldVsBruteForce,
                          testing::Values(FieldCase{"bunny", 32, sdf::SdfFormat::f32}, FieldCase{"bunny", 64, sdf::SdfFormat::f16},
                                          FieldCase{"teapot", 48, sdf::SdfFormat::u8}, FieldCase{"monkey", 40, sdf::SdfFormat::f32}),
-                         case_name);
+                         test::field_case_name);
 
 // An open, flat mesh (a panel of 4x4 quads, no thickness): the bound holds there too, above,
 // below, beside and far from it.

@@ -20,19 +20,12 @@
 #include "renderers/vulkan/shader_compiler.h"
 #include "renderers/vulkan/vulkan_context.h"
 #include "scenes/mesh.h"
+#include "tests/brick_field_cases.h"
 
 namespace sdfbench {
 namespace {
 
-struct ProbeCase {
-  const char* mesh;
-  uint32_t voxels;
-  sdf::SdfFormat format;
-};
-
-std::string probe_case_name(const testing::TestParamInfo<ProbeCase>& info) {
-  return std::string(info.param.mesh) + "_" + std::to_string(info.param.voxels) + "_" + sdf::to_string(info.param.format);
-}
+using test::FieldCase;
 
 struct DeviceSample {
   float bound, value, stored, unused;
@@ -70,10 +63,10 @@ std::vector<DeviceSample> sample_on_device(const VulkanContext& context, const B
   return result;
 }
 
-class SamplerFetchVsBruteForce : public testing::TestWithParam<ProbeCase> {};
+class SamplerFetchVsBruteForce : public testing::TestWithParam<FieldCase> {};
 
 TEST_P(SamplerFetchVsBruteForce, BoundNeverExceedsTheDistanceAndTheFilterStaysInItsSlack) {
-  const ProbeCase c = GetParam();
+  const FieldCase c = GetParam();
   const Mesh mesh = load_obj(builtin_mesh_path(c.mesh), c.mesh);
   const sdf::MeshDistanceGrid grid = sdf::build_mesh_distance_grid(mesh, sdf::MeshGridParams{});
   const std::vector<sdf::BrickField> fields = {
@@ -126,14 +119,14 @@ TEST_P(SamplerFetchVsBruteForce, BoundNeverExceedsTheDistanceAndTheFilterStaysIn
   // The filter does differ from the exact trilinear (else this test would not see the hardware).
   EXPECT_GT(largest_filter_error, 0.0) << "the device's filter equals the exact trilinear everywhere";
   std::printf("%s: %zu stored-brick points, largest filter error %.3g of a slack %.3g (mesh units)\n",
-              probe_case_name({c, 0}).c_str(), stored, largest_filter_error, double(filter_slack));
+              test::field_case_name({c, 0}).c_str(), stored, largest_filter_error, double(filter_slack));
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, SamplerFetchVsBruteForce,
-                         testing::Values(ProbeCase{"bunny", 32, sdf::SdfFormat::f32},
-                                         ProbeCase{"teapot", 48, sdf::SdfFormat::u8},
-                                         ProbeCase{"monkey", 40, sdf::SdfFormat::f16}),
-                         probe_case_name);
+                         testing::Values(FieldCase{"bunny", 32, sdf::SdfFormat::f32},
+                                         FieldCase{"teapot", 48, sdf::SdfFormat::u8},
+                                         FieldCase{"monkey", 40, sdf::SdfFormat::f16}),
+                         test::field_case_name);
 
 }  // namespace
 }  // namespace sdfbench
