@@ -121,9 +121,13 @@ void main() {
     if (s.counters.x == 0u) return;
     ray = pop_ray(s);
   }
-  trace_ray(ray, s, aov);
-  if (SHADING_MODE == MODE_WHITTED && WHITTED_PASSES == 0)
-    while (s.counters.x > 0u) trace_ray(pop_ray(s), s, aov);
+  // One call site of trace_ray: the driver inlines every call, and lavapipe's compile time grows
+  // faster than the code (two sites made a whitted kernel with implicit objects take 2x as long).
+  for (;;) {
+    trace_ray(ray, s, aov);
+    if (SHADING_MODE != MODE_WHITTED || WHITTED_PASSES == 1 || s.counters.x == 0u) break;
+    ray = pop_ray(s);
+  }
   // ids.w: why the pixel was cut short, CUT_LOOP_CAP | CUT_TRAVERSAL_BOUND (0: not).
   uint cut = (loop_limit_hit() ? CUT_LOOP_CAP : 0u) | (TRAVERSAL_OVERFLOW ? CUT_TRAVERSAL_BOUND : 0u);
   if (first) {
