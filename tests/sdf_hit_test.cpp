@@ -170,10 +170,12 @@ TEST(SdfHit, ScalesAThousandthAndAThousandInOneScene) {
   add_instance(scene, bunny, {0.004f, 0.0f, 0.0f}, 0.001f, 0);
   add_instance(scene, bunny, {0.0f, 0.0f, -4000.0f}, 1000.0f);
   // Structures sized for the large bunny (the defaults, cell 10 down to nodes of 1, would refine
-  // its 1500-unit extent into billions of nodes).
+  // its 1500-unit extent into billions of nodes; sdf-global's auto voxel, 2048 cells along the
+  // scene, would sample its surface into a million voxels: 20 s to build on 2 cores).
   BackendOptions options;
   options.params.set("hash_cell", "200.0");
   options.params.set("octree_depth", "2");
+  options.params.set("global_voxel", "20.0");
   scene.camera = Camera{.position = {0.002f, 0.001f, 0.006f}, .look_at = {0.002f, 0.0f, 0.0f}};  // the small ones
   expect_agreement(scene, options);
   scene.camera = Camera{.position = {0.0f, 500.0f, 1500.0f}, .look_at = {0.0f, 0.0f, -4000.0f}};  // the large one
@@ -199,6 +201,7 @@ TEST(SdfHit, RayOffsetsFollowTheHitNotTheScene) {
   BackendOptions options;  // sized for the large bunny, as above
   options.params.set("hash_cell", "200.0");
   options.params.set("octree_depth", "2");
+  options.params.set("global_voxel", "20.0");
   for (const char* backend : {"embree", "tri-aabb", "sdf-cpu", "sdf-hash", "sdf-octree"}) {
     SCOPED_TRACE(backend);
     auto renderer = create_renderer(backend, options);

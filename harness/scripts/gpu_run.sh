@@ -7,7 +7,7 @@
 #
 #   harness/scripts/gpu_run.sh [--device gpu] [--size 1280x720] [--compare-size 640x360]
 #       [--budget-s 2] [--frames 3] [--minutes 8] [--out results] [--binary build/sdfbench]
-#       [--storage-scene thesis:bunny:1000] [--compare-objects 100] [--tables-only]
+#       [--storage-scene thesis:bunny:1000] [--compare-objects 100] [--compare-meshes LIST] [--tables-only]
 #       [-- TABLE_FLAGS...]   (e.g. -- --table 6.3 --objects 1,10: passed to `sdfbench table`)
 #
 # Between the compares and the tables: the SDF tables in texel buffers against storage buffers
@@ -16,7 +16,8 @@
 # and sdf-bricks' two fetch paths (`--brick-fetch texel,sampler`: texel buffers with the kernel's
 # trilinear against the sampler's filtered 3D image), primary and shadow, in brick_fetch.csv/.md.
 #
-# --compare-objects N: the thesis meshes' object count in the compares (thesis:<mesh>:N).
+# --compare-objects N: the thesis meshes' object count in the compares (thesis:<mesh>:N);
+# --compare-meshes: which meshes (default bunny,teapot,monkey,sphere; any name a thesis: spec takes).
 # On lavapipe, as a check of the script: --device lavapipe --size 64x36 --compare-size 64x36.
 # --binary defaults to $SDFBENCH, else build/sdfbench, else ./sdfbench (the launcher at the top
 # of a bundle from make_bundle.sh, where this script is harness/scripts/gpu_run.sh).
@@ -29,7 +30,7 @@ set -euo pipefail
 caller_dir=$PWD
 cd "$(dirname "$0")/../.."
 device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=results storage_scene=thesis:bunny:1000
-compare_objects=100
+compare_objects=100 compare_meshes=bunny,teapot,monkey,sphere
 binary=${SDFBENCH:-build/sdfbench}
 [[ -n ${SDFBENCH:-} || -x $binary || ! -x sdfbench ]] || binary=./sdfbench
 table_flags=() tables_only=0 failed=0
@@ -37,17 +38,17 @@ die() { echo "gpu_run.sh: error: $*" >&2; exit 1; }
 from_caller() { if [[ $1 == /* ]]; then echo "$1"; else echo "$caller_dir/$1"; fi; }
 while [[ $# -gt 0 ]]; do
   case "$1" in
-    --device|--size|--compare-size|--budget-s|--frames|--minutes|--out|--binary|--storage-scene|--compare-objects)
+    --device|--size|--compare-size|--budget-s|--frames|--minutes|--out|--binary|--storage-scene|--compare-objects|--compare-meshes)
       [[ $# -ge 2 ]] || die "$1 needs a value"
       case "$1" in
         --device) device=$2 ;; --size) size=$2 ;; --compare-size) compare_size=$2 ;; --budget-s) budget=$2 ;;
         --frames) frames=$2 ;; --minutes) minutes=$2 ;; --out) out=$(from_caller "$2") ;; --binary) binary=$(from_caller "$2") ;;
-        --storage-scene) storage_scene=$2 ;; --compare-objects) compare_objects=$2 ;;
+        --storage-scene) storage_scene=$2 ;; --compare-objects) compare_objects=$2 ;; --compare-meshes) compare_meshes=$2 ;;
       esac
       shift 2 ;;
     --tables-only) tables_only=1; shift ;;
     --) shift; table_flags=("$@"); break ;;
-    -h|--help) sed -n 2,27p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,28p "$0"; exit 0 ;;
     *) die "unknown argument '$1' (see --help)" ;;
   esac
 done
@@ -55,6 +56,8 @@ done
 [[ $minutes =~ ^[0-9]{1,5}$ && $minutes -gt 0 ]] || die "--minutes takes whole minutes > 0, not '$minutes'"
 [[ $frames =~ ^[0-9]{1,5}$ && $frames -gt 0 ]] || die "--frames takes a whole number > 0, not '$frames'"
 [[ $compare_objects =~ ^[0-9]{1,7}$ && $compare_objects -gt 0 ]] || die "--compare-objects takes a whole number > 0, not '$compare_objects'"
+[[ $compare_meshes =~ ^[a-z0-9_]+(,[a-z0-9_]+)*$ ]] ||
+  die "--compare-meshes takes mesh names separated by commas (e.g. bunny,teapot), not '$compare_meshes'"
 [[ $budget =~ ^([0-9]+\.?[0-9]*|\.[0-9]+)$ ]] && awk -v b="$budget" 'BEGIN{exit !(b > 0 && b <= 1e7)}' ||
   die "--budget-s takes seconds > 0, not '$budget'"
 for pair in "--size:$size" "--compare-size:$compare_size"; do
@@ -107,7 +110,7 @@ if [[ $tables_only -eq 0 ]]; then
     } >>"$agreement"
     case $status in 0) ;; 2) disagreed=1 ;; *) die "compare of $1 ($2) failed; see $agreement" ;; esac
   }
-  for mesh in bunny teapot monkey sphere; do
+  for mesh in ${compare_meshes//,/ }; do
     for mode in primary shadow; do run_compare "thesis:$mesh:$compare_objects" "$mode"; done
   done
   for scene in scenes/fig6_1.json scenes/fig6_3.json; do run_compare "$scene" whitted; done
