@@ -7,24 +7,25 @@
 #   - nothing was installed from another suite and the root's apt sources are unchanged;
 #   - the build ran with SDFBENCH_WARNINGS_AS_ERRORS=ON (GCC 14), every target.
 # Needs root (debootstrap, chroot, mounts) and Debian's mirror.
-#   tests/debian13/debian13_test.sh [--fresh] [--tests REGEX]
-# --tests limits the test command to the ctest tests matching REGEX (run_tests.sh passes ctest
-# arguments through); .ci/run uses a subset to stay within its time (docs/development.md,
-# "Tests"). The root is kept in $DEBIAN13_WORK (default /tmp/sdfbench-debian13) and reused by
+#   tests/debian13/debian13_test.sh [--fresh] [--tests REGEX] [--exclude REGEX]
+# --tests limits the test command to the ctest tests matching REGEX, --exclude leaves out those
+# matching REGEX (ctest -R / -E; run_tests.sh passes ctest arguments through); .ci/run leaves out
+# the slowest algorithm tests to stay within its time (docs/development.md, "Tests"). The root is kept in $DEBIAN13_WORK (default /tmp/sdfbench-debian13) and reused by
 # a later run (its packages and build stay; the source copy is refreshed); --fresh remakes it.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 work=${DEBIAN13_WORK:-/tmp/sdfbench-debian13}
 root=$work/root
 src=/opt/sdfbench
-fresh=false tests=""
+fresh=false tests="" exclude=""
 fail() { echo "debian13_test: FAIL: $*" >&2; exit 1; }
 say() { echo "debian13_test: $*"; }
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --fresh) fresh=true; shift ;;
     --tests) [[ $# -ge 2 ]] || fail "--tests needs a regular expression"; tests=$2; shift 2 ;;
-    *) fail "unknown argument '$1' (usage: $0 [--fresh] [--tests REGEX])" ;;
+    --exclude) [[ $# -ge 2 ]] || fail "--exclude needs a regular expression"; exclude=$2; shift 2 ;;
+    *) fail "unknown argument '$1' (usage: $0 [--fresh] [--tests REGEX] [--exclude REGEX])" ;;
   esac
 done
 [[ $(id -u) -eq 0 ]] || fail "needs root (debootstrap, chroot and mounts)"
@@ -80,13 +81,13 @@ foreign=$(in_root dpkg-query -W -f '${Package} ${Version}\n' | grep -E '~bpo|deb
 say "apt sources unchanged, no package from another suite; $(in_root dpkg-query -W -f '${Version}' mesa-vulkan-drivers) mesa-vulkan-drivers"
 [[ -f $root$src/.deps/lavapipe-mesa22/libLLVM-15.so.1 ]] || fail "Debian 12's LLVM 15 is not beside the old lavapipe in .deps/"
 
-# 3. The README's test command, as written (with --tests: a subset, by ctest -R).
-if [[ -n $tests ]]; then
-  step tests harness/scripts/run_tests.sh -R "'$tests'"
-else
-  step tests harness/scripts/run_tests.sh
-fi
+# 3. The README's test command, as written (with --tests / --exclude: a subset, by ctest -R / -E).
+subset=()
+[[ -z $tests ]] || subset+=(-R "'$tests'")
+[[ -z $exclude ]] || subset+=(-E "'$exclude'")
+step tests harness/scripts/run_tests.sh "${subset[@]}"
 summary=$(grep -E 'tests passed|tests failed' "$work/tests.log" | tail -1)
 say "tests: $summary"
-grep -q 'OldLavapipe' "$work/tests.log" || [[ -n $tests && ! OldLavapipe =~ $tests ]] || fail "the loop-cap tests did not run"
+grep -q 'OldLavapipe' "$work/tests.log" || [[ -n $tests && ! OldLavapipe =~ $tests ]] || [[ -n $exclude && OldLavapipe =~ $exclude ]] ||
+  fail "the loop-cap tests did not run"
 say "all passed in $((SECONDS - started)) s"
