@@ -33,7 +33,7 @@ TEST_P(BrickFieldVsBruteForce, BoundNeverExceedsTheDistance) {
   const FieldCase c = GetParam();
   const Mesh mesh = load_obj(builtin_mesh_path(c.mesh), c.mesh);
   const sdf::MeshDistanceGrid grid = sdf::build_mesh_distance_grid(mesh, sdf::MeshGridParams{});
-  const sdf::BrickField field = sdf::build_brick_field(mesh, grid, sdf::MeshGridParams{}, {c.voxels, 4, c.format});
+  const sdf::BrickField field = sdf::build_brick_field(mesh, grid, {c.voxels, 4, c.format});
   const std::vector<sdf::BrickField> fields = {field};
   const BrickGpuArrays arrays = flatten_brick_fields(fields);
   shading::BrickCpuSampler sampler(arrays);
@@ -85,7 +85,7 @@ TEST_P(BrickFieldVsBruteForce, LatticeSamplesAreTheClampedExactDistance) {
   const FieldCase c = GetParam();
   const Mesh mesh = load_obj(builtin_mesh_path(c.mesh), c.mesh);
   const sdf::MeshDistanceGrid grid = sdf::build_mesh_distance_grid(mesh, sdf::MeshGridParams{});
-  const sdf::BrickField field = sdf::build_brick_field(mesh, grid, sdf::MeshGridParams{}, {c.voxels, 4, c.format});
+  const sdf::BrickField field = sdf::build_brick_field(mesh, grid, {c.voxels, 4, c.format});
   size_t checked = 0;
   for (size_t b = 0; b < field.brick_count() && checked < 400; b += 3) {
     if (field.indirection[b] == sdf::kEmptyBrick) continue;
@@ -124,7 +124,7 @@ TEST(BrickField, OpenFlatPanelBoundNeverExceedsTheDistance) {
   finish_mesh(panel);
   const sdf::MeshDistanceGrid grid = sdf::build_mesh_distance_grid(panel, sdf::MeshGridParams{});
   for (uint32_t voxels : {32u, 128u}) {
-    const std::vector<sdf::BrickField> fields = {sdf::build_brick_field(panel, grid, sdf::MeshGridParams{}, {voxels, 4})};
+    const std::vector<sdf::BrickField> fields = {sdf::build_brick_field(panel, grid, {voxels, 4})};
     const BrickGpuArrays arrays = flatten_brick_fields(fields);
     shading::BrickCpuSampler sampler(arrays);
     const auto info = sampler.brick_field_info(0);
@@ -142,16 +142,16 @@ TEST(BrickField, OpenFlatPanelBoundNeverExceedsTheDistance) {
 TEST(BrickField, FormatsStoreTheSameBricksInFewerBytes) {
   const Mesh mesh = load_obj(builtin_mesh_path("bunny"), "bunny");
   const sdf::MeshDistanceGrid grid = sdf::build_mesh_distance_grid(mesh, sdf::MeshGridParams{});
-  const sdf::BrickField f32 = sdf::build_brick_field(mesh, grid, sdf::MeshGridParams{}, {32, 4, sdf::SdfFormat::f32});
-  const sdf::BrickField f16 = sdf::build_brick_field(mesh, grid, sdf::MeshGridParams{}, {32, 4, sdf::SdfFormat::f16});
-  const sdf::BrickField u8 = sdf::build_brick_field(mesh, grid, sdf::MeshGridParams{}, {32, 4, sdf::SdfFormat::u8});
+  const sdf::BrickField f32 = sdf::build_brick_field(mesh, grid, {32, 4, sdf::SdfFormat::f32});
+  const sdf::BrickField f16 = sdf::build_brick_field(mesh, grid, {32, 4, sdf::SdfFormat::f16});
+  const sdf::BrickField u8 = sdf::build_brick_field(mesh, grid, {32, 4, sdf::SdfFormat::u8});
   EXPECT_EQ(f32.indirection, f16.indirection);
   EXPECT_EQ(f32.indirection, u8.indirection);
   EXPECT_EQ(f32.atlas.size(), 2 * f16.atlas.size());
   EXPECT_EQ(f32.atlas.size(), 4 * u8.atlas.size());
   EXPECT_LT(f16.quantization, u8.quantization);
   // A wider band stores more bricks.
-  EXPECT_GT(sdf::build_brick_field(mesh, grid, sdf::MeshGridParams{}, {32, 8, sdf::SdfFormat::f32}).stored_bricks(), f32.stored_bricks());
+  EXPECT_GT(sdf::build_brick_field(mesh, grid, {32, 8, sdf::SdfFormat::f32}).stored_bricks(), f32.stored_bricks());
 }
 
 TEST(BrickField, ParametersOutsideTheirRangesAreErrors) {

@@ -70,7 +70,7 @@ TEST_P(SamplerFetchVsBruteForce, BoundNeverExceedsTheDistanceAndTheFilterStaysIn
   const Mesh mesh = load_obj(builtin_mesh_path(c.mesh), c.mesh);
   const sdf::MeshDistanceGrid grid = sdf::build_mesh_distance_grid(mesh, sdf::MeshGridParams{});
   const std::vector<sdf::BrickField> fields = {
-      sdf::build_brick_field(mesh, grid, sdf::MeshGridParams{}, {c.voxels, 4, c.format})};
+      sdf::build_brick_field(mesh, grid, {c.voxels, 4, c.format})};
   const sdf::BrickField& field = fields[0];
   const BrickGpuArrays arrays = flatten_brick_fields(fields);
 

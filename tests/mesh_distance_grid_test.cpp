@@ -228,6 +228,39 @@ TEST(MeshDistanceGrid, ExactOnTheThesisMeshesCoarseAndFine) {
   }
 }
 
+// The fields' sampling query (ExactMeshDistance): beyond the grid's box, where the grid gives only a
+// bound, the brute-force distance exactly (the same min over the same per-triangle distances),
+// positive (outside the mesh's bounds); in the box the grid's own values, signed as the grid signs.
+TEST(MeshDistanceGrid, ExactQueryIsBruteForceBeyondTheBoxAndTheGridInIt) {
+  for (const std::string& name : thesis_mesh_names()) {
+    SCOPED_TRACE(name);
+    const Mesh mesh = load_obj(builtin_mesh_path(name), name);
+    const MeshDistanceGrid grid = build_mesh_distance_grid(mesh, MeshGridParams{});
+    const ExactMeshDistance exact(grid, mesh);
+    const glm::vec3 size = grid.box_max() - grid.origin;
+    Pcg32 rng(11);
+    int beyond = 0, lower_bound = 0;
+    for (int i = 0; i < 400; ++i) {
+      // Within a box 3x the grid's, so most points lie beyond it; some just beyond a face.
+      glm::vec3 p = random_in_box(grid.origin - size, grid.box_max() + size, rng);
+      if (i % 4 == 0) p = random_surface_point(mesh, rng) + random_direction(rng) * (0.3f * size.x);
+      const glm::vec3 q = glm::clamp(p, grid.origin, grid.box_max());
+      const float brute = brute_force_distance(mesh, p);
+      if (q != p) {
+        ++beyond;
+        EXPECT_EQ(exact.distance(p), brute) << "beyond the box at " << p.x << " " << p.y << " " << p.z;
+        EXPECT_EQ(exact.signed_distance(p), brute);
+        lower_bound += grid_distance(grid, mesh, p) < brute;  // what the grid alone gives there
+      } else {
+        EXPECT_EQ(exact.distance(p), grid_distance(grid, mesh, p));
+        EXPECT_EQ(exact.signed_distance(p), grid_signed_distance(grid, mesh, p));
+      }
+    }
+    EXPECT_GT(beyond, 200);
+    EXPECT_GT(lower_bound, 100);  // the query answers where the grid could not
+  }
+}
+
 // A 50k-triangle mesh (the mesh-size axis' generator, cached in a temporary folder): its grid is
 // scaled (mesh_distance_grid.h), exact in every listed cell (max |grid - brute force| = 0 on
 // sampled points), a positive lower bound in far cells, with the sign of ray parity there; with

@@ -48,7 +48,7 @@ void validate(const BrickFieldParams& params) {
 }
 
 
-BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_grid, const MeshGridParams& grid_params,
+BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_grid,
                              const BrickFieldParams& params) {
   validate(params);
   const auto start = std::chrono::steady_clock::now();
@@ -71,17 +71,9 @@ BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_gri
   const glm::uvec3 corners = field.coarse_dims();
   const float brick_size = float(kBrickCells) * field.voxel;
 
-  // Exact samples everywhere on the lattice: outside its box the mesh grid gives only a bound.
-  MeshDistanceGrid wider;
-  const bool inside = glm::all(glm::greaterThanEqual(field.origin, given_grid.origin)) &&
-                      glm::all(glm::lessThanEqual(field.box_max(), given_grid.box_max()));
-  if (!inside) {
-    MeshGridParams p = grid_params;
-    const glm::vec3 reach = glm::max(given_grid.origin - field.origin, field.box_max() - given_grid.box_max());
-    p.margin_cells += std::ceil(std::max({reach.x, reach.y, reach.z}) / given_grid.cell_size) + 1.0f;
-    wider = build_mesh_distance_grid(mesh, p);
-  }
-  const MeshDistanceGrid& grid = inside ? given_grid : wider;
+  // Exact samples everywhere on the lattice: outside its box the mesh grid gives only a bound, so
+  // the exact query answers there.
+  const ExactMeshDistance exact(given_grid, mesh);
 
   // Coarse level: the exact signed distance at each brick corner (unclamped).
   field.coarse.resize(size_t(corners.x) * corners.y * corners.z);
@@ -90,7 +82,7 @@ BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_gri
       for (uint32_t y = 0; y < corners.y; ++y)
         for (uint32_t x = 0; x < corners.x; ++x)
           field.coarse[index_of({x, y, z}, corners)] =
-              grid_signed_distance(grid, mesh, field.origin + brick_size * glm::vec3(x, y, z));
+              exact.signed_distance(field.origin + brick_size * glm::vec3(x, y, z));
   });
 
   // A brick is stored unless its centre is so far from the surface that no point of it comes
@@ -101,7 +93,7 @@ BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_gri
     for (size_t b = r.begin(); b != r.end(); ++b) {
       const glm::uvec3 c = coords_of(b, field.bricks);
       const glm::vec3 centre = field.origin + brick_size * (glm::vec3(c) + 0.5f);
-      stored[b] = grid_distance(grid, mesh, centre) - reach < field.band;
+      stored[b] = exact.distance(centre) - reach < field.band;
     }
   });
   field.indirection.assign(brick_count, kEmptyBrick);
@@ -126,7 +118,7 @@ BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_gri
         for (uint32_t y = 0; y < kBrickSide; ++y)
           for (uint32_t x = 0; x < kBrickSide; ++x, out += sample_bytes) {
             const glm::vec3 p = field.origin + field.voxel * glm::vec3(c * kBrickCells + glm::uvec3(x, y, z));
-            store_sample(params.format, field.band, grid_signed_distance(grid, mesh, p), out);
+            store_sample(params.format, field.band, exact.signed_distance(p), out);
           }
     }
     progress.advance(r.size());

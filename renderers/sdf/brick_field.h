@@ -86,11 +86,10 @@ struct BrickField {
 
 // Throws Error for voxels outside 4..kMaxVoxels or band outside 1..16. Built in parallel
 // (TBB); the result does not depend on the thread count.
-// `grid` is the mesh's exact grid built with `grid_params`; where the lattice reaches beyond its
-// box (where the grid gives only a bound), the samples come from a grid of the same cells with a
-// margin that covers the lattice, built for the sampling and then dropped.
+// `grid` is the mesh's exact grid; where the lattice reaches beyond its box (where the grid gives
+// only a bound), the samples come from ExactMeshDistance's nearest-triangle query.
 void validate(const BrickFieldParams& params);
-BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& grid, const MeshGridParams& grid_params,
+BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& grid,
                              const BrickFieldParams& params);
 
 // Writes `value`, clamped to [-band, band], as one sample in `format` (u8: a band-relative UNORM).

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <span>
 
 #include <tbb/blocked_range.h>
@@ -27,17 +28,23 @@ float box_distance(const Aabb& box, const glm::vec3& p) {
   return glm::length(glm::max(glm::max(box.min - p, p - box.max), glm::vec3(0.0f)));
 }
 
-// The mesh grids the samples come from, and the instances' frames.
+// Where the samples come from: per mesh its grid, or where the band reaches beyond the grid's box
+// the exact distance there too; and the instances' frames.
 struct SamplingGrids {
-  std::vector<const MeshDistanceGrid*> grids;  // per mesh
+  std::vector<const MeshDistanceGrid*> grids;        // per mesh
+  std::vector<std::optional<ExactMeshDistance>> exact;  // per mesh, where the band reaches beyond its grid
   const std::vector<glm::mat4>* world_to_object;
 };
 
-// One instance's signed distance at world point p (a lower bound in magnitude outside its grid box).
+// One instance's signed distance at world point p (a lower bound in magnitude outside its grid box
+// unless the mesh has an exact query).
 float signed_instance_distance(const Scene& scene, const SamplingGrids& sampling, uint32_t i, const glm::vec3& p) {
   const Instance& instance = scene.instances[i];
   const glm::vec3 local((*sampling.world_to_object)[i] * glm::vec4(p, 1.0f));
-  return grid_signed_distance(*sampling.grids[instance.mesh], scene.meshes[instance.mesh], local) * instance.transform.scale;
+  const std::optional<ExactMeshDistance>& exact = sampling.exact[instance.mesh];
+  const float d = exact ? exact->signed_distance(local)
+                        : grid_signed_distance(*sampling.grids[instance.mesh], scene.meshes[instance.mesh], local);
+  return d * instance.transform.scale;
 }
 
 // The composite over `candidates`: the least magnitude, negative inside any of them (so that its
@@ -150,23 +157,19 @@ GlobalField build_global_field(const Scene& scene, const SceneSdf& scene_sdf, co
   const float list_slack = kListSlackVoxels * field.voxel + coordinate_slack;
 
   // Exact samples within the band of every instance: where the band reaches beyond a mesh grid's
-  // box, a wider grid for the sampling (its instances' smallest scale sets the reach).
+  // box (its instances' smallest scale sets the reach), the exact distance there too.
   std::vector<float> smallest_scale(scene.meshes.size(), std::numeric_limits<float>::max());
   for (const Instance& instance : scene.instances)
     smallest_scale[instance.mesh] = std::min(smallest_scale[instance.mesh], instance.transform.scale);
-  std::vector<MeshDistanceGrid> wider(scene.meshes.size());
-  SamplingGrids sampling{{}, &scene_sdf.world_to_object};
+  SamplingGrids sampling{{}, {}, &scene_sdf.world_to_object};
+  sampling.exact.resize(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const MeshDistanceGrid& grid = scene_sdf.mesh_grids[m];
     sampling.grids.push_back(&grid);
     if (smallest_scale[m] == std::numeric_limits<float>::max()) continue;  // no instance
     const float reach_cells = (field.band + 2.0f * field.voxel) / smallest_scale[m] / grid.cell_size;
-    const float extra = std::min(std::ceil(reach_cells) + 1.0f - mesh_params.margin_cells, kMaxSamplingMarginCells);
-    if (extra <= 0.0f || !std::isfinite(extra)) continue;
-    MeshGridParams p = mesh_params;
-    p.margin_cells += extra;
-    wider[m] = build_mesh_distance_grid(scene.meshes[m], p);
-    sampling.grids.back() = &wider[m];
+    if (!(reach_cells + 1.0f > mesh_params.margin_cells)) continue;  // the band stays in the grid's box
+    sampling.exact[m].emplace(grid, scene.meshes[m]);
   }
 
   // Candidates per brick: the instances whose box comes within the band (or the list slack) of it;

@@ -62,11 +62,9 @@ float global_field_voxel(const Scene& scene, const GlobalFieldParams& params);
 
 // Built in parallel (TBB) from `sdf`'s mesh grids (built with `mesh_params`) and its
 // world_to_object; where the band reaches beyond a mesh grid's box (which gives only a bound
-// there), the samples come from a grid of the same cells with a margin that covers the band (at
-// most kMaxSamplingMarginCells more), built for the sampling and dropped. Progress on stderr for
+// there), the samples come from ExactMeshDistance's nearest-triangle query. Progress on stderr for
 // long builds. Throws Error for a lattice of more than kMaxHashCells bricks or a field over
 // params.max_bytes (naming the flags to change). A scene without mesh instances gets one empty brick.
-inline constexpr float kMaxSamplingMarginCells = 16.0f;
 
 GlobalField build_global_field(const Scene& scene, const SceneSdf& sdf, const MeshGridParams& mesh_params,
                                const GlobalFieldParams& params);

@@ -739,6 +739,69 @@ float grid_signed_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const
   return inside_by_pseudo_normal(grid, mesh, t, p) ? -d : d;
 }
 
+struct ExactMeshDistance::Tree {
+  Bvh bvh;
+};
+
+ExactMeshDistance::ExactMeshDistance(const MeshDistanceGrid& grid, const Mesh& mesh)
+    : grid_(&grid), mesh_(&mesh), tree_(std::make_unique<Tree>()) {
+  std::vector<TriangleBox> boxes(mesh.triangles.size());
+  for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    boxes[t].lo = glm::min(glm::min(vertex(mesh, t, 0), vertex(mesh, t, 1)), vertex(mesh, t, 2));
+    boxes[t].hi = glm::max(glm::max(vertex(mesh, t, 0), vertex(mesh, t, 1)), vertex(mesh, t, 2));
+  }
+  tree_->bvh = build_bvh(boxes);
+}
+
+ExactMeshDistance::~ExactMeshDistance() = default;
+ExactMeshDistance::ExactMeshDistance(ExactMeshDistance&&) noexcept = default;
+ExactMeshDistance& ExactMeshDistance::operator=(ExactMeshDistance&&) noexcept = default;
+
+float ExactMeshDistance::nearest(const glm::vec3& p, uint32_t& triangle) const {
+  const float d = grid_distance(*grid_, *mesh_, p, &triangle);
+  if (triangle != UINT32_MAX) return d;  // in the grid box
+  // Beyond the box: every triangle's distance, pruned by the BVH; a box exactly as far as the
+  // best so far is still opened, so that a tie goes to the lowest index.
+  const Bvh& bvh = tree_->bvh;
+  float best = kInf;
+  uint32_t stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Bvh::Node& node = bvh.nodes[stack[--top]];
+    if (point_box_distance2(p, node.lo, node.hi) > best) continue;
+    if (node.count > 0) {
+      for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+        const uint32_t t = bvh.order[i];
+        const float d2 = closest_on_mesh_triangle(*mesh_, t, p).distance_squared;
+        if (d2 < best || (d2 == best && t < triangle)) {
+          best = d2;
+          triangle = t;
+        }
+      }
+      continue;
+    }
+    const uint32_t l = node.first, r = node.first + 1;
+    const bool left_first = point_box_distance2(p, bvh.nodes[l].lo, bvh.nodes[l].hi) <=
+                            point_box_distance2(p, bvh.nodes[r].lo, bvh.nodes[r].hi);
+    stack[top++] = left_first ? r : l;  // the nearer child on top
+    stack[top++] = left_first ? l : r;
+  }
+  return std::sqrt(best);
+}
+
+float ExactMeshDistance::distance(const glm::vec3& p) const {
+  uint32_t t = UINT32_MAX;
+  return nearest(p, t);
+}
+
+float ExactMeshDistance::signed_distance(const glm::vec3& p) const {
+  uint32_t t = UINT32_MAX;
+  const float d = nearest(p, t);
+  if (t == kFarCellTriangle) return grid_->far_distance[cell_of(*grid_, p)] < 0.0f ? -d : d;  // the far cell's side
+  return inside_by_pseudo_normal(*grid_, *mesh_, t, p) ? -d : d;
+}
+
 float brute_force_distance(const Mesh& mesh, const glm::vec3& p, uint32_t* closest_triangle) {
   float best = kInf;
   uint32_t best_t = UINT32_MAX;

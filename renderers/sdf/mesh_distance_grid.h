@@ -17,6 +17,7 @@
 // `check-sdf --cells-per-extent`), not as a default for every mesh.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -153,6 +154,30 @@ float traced_grid_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const
 // the closest feature (correct for closed, consistently oriented meshes). Outside the grid box
 // (which contains the whole mesh) the point is outside: the positive box lower bound.
 float grid_signed_distance(const MeshDistanceGrid& grid, const Mesh& mesh, const glm::vec3& p);
+
+// Exact distances anywhere, for the brick and global fields' samples: the grid's in its box (a
+// far cell's bound there, as grid_distance), beyond the box, where the grid gives only a bound, a
+// nearest-triangle query over a BVH of the mesh's triangles, signed by the grid's pseudo-normals
+// as in the box (ties: the lowest triangle index, as a cell's ascending list gives). It replaced a
+// wider grid built for the sampling: the band beyond the box holds few samples, while a grid up to
+// 16 cells wider on every side has many more cells to list (a 32x18 sdf-global render of fig6_3:
+// 16.8 s -> 4.3 s, sdf-bricks 7.1 s -> 4.5 s). The grid and mesh must outlive it.
+class ExactMeshDistance {
+ public:
+  ExactMeshDistance(const MeshDistanceGrid& grid, const Mesh& mesh);
+  ~ExactMeshDistance();
+  ExactMeshDistance(ExactMeshDistance&&) noexcept;
+  ExactMeshDistance& operator=(ExactMeshDistance&&) noexcept;
+  float distance(const glm::vec3& p) const;
+  float signed_distance(const glm::vec3& p) const;
+
+ private:
+  float nearest(const glm::vec3& p, uint32_t& triangle) const;
+  struct Tree;
+  const MeshDistanceGrid* grid_;
+  const Mesh* mesh_;
+  std::unique_ptr<Tree> tree_;
+};
 
 // Brute force over all triangles: the independent reference.
 float brute_force_distance(const Mesh& mesh, const glm::vec3& p, uint32_t* closest_triangle = nullptr);

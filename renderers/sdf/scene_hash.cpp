@@ -363,7 +363,7 @@ void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh
   sdf.brick_fields.clear();
   for (size_t m = 0; m < scene.meshes.size(); ++m)
     sdf.brick_fields.push_back(reuse_brick_field(scene.meshes[m], mesh_params, bricks, [&] {
-      return build_brick_field(scene.meshes[m], sdf.mesh_grids[m], mesh_params, bricks);
+      return build_brick_field(scene.meshes[m], sdf.mesh_grids[m], bricks);
     }));
   sdf.brick_params = bricks;
 }
