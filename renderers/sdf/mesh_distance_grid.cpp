@@ -139,6 +139,15 @@ Bvh build_bvh(const std::vector<TriangleBox>& boxes) {
 
 glm::vec3 vertex(const Mesh& mesh, uint32_t t, int k) { return mesh.positions[mesh.triangles[t][k]]; }
 
+std::vector<TriangleBox> triangle_boxes(const Mesh& mesh) {
+  std::vector<TriangleBox> boxes(mesh.triangles.size());
+  for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    boxes[t].lo = glm::min(glm::min(vertex(mesh, t, 0), vertex(mesh, t, 1)), vertex(mesh, t, 2));
+    boxes[t].hi = glm::max(glm::max(vertex(mesh, t, 0), vertex(mesh, t, 1)), vertex(mesh, t, 2));
+  }
+  return boxes;
+}
+
 TriangleClosest closest_on_mesh_triangle(const Mesh& mesh, uint32_t t, const glm::vec3& p) {
   const glm::uvec3& tri = mesh.triangles[t];
   return closest_on_triangle(p, mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]);
@@ -549,11 +558,7 @@ MeshDistanceGrid build_mesh_distance_grid(const Mesh& mesh, const MeshGridParams
   grid.cell_size = layout.cell_size;
   grid.dims = layout.dims;
 
-  std::vector<TriangleBox> boxes(mesh.triangles.size());
-  for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-    boxes[t].lo = glm::min(glm::min(vertex(mesh, t, 0), vertex(mesh, t, 1)), vertex(mesh, t, 2));
-    boxes[t].hi = glm::max(glm::max(vertex(mesh, t, 0), vertex(mesh, t, 1)), vertex(mesh, t, 2));
-  }
+  const std::vector<TriangleBox> boxes = triangle_boxes(mesh);
   const Bvh bvh = build_bvh(boxes);
   compute_pseudo_normals(mesh, grid);
 
@@ -745,12 +750,7 @@ struct ExactMeshDistance::Tree {
 
 ExactMeshDistance::ExactMeshDistance(const MeshDistanceGrid& grid, const Mesh& mesh)
     : grid_(&grid), mesh_(&mesh), tree_(std::make_unique<Tree>()) {
-  std::vector<TriangleBox> boxes(mesh.triangles.size());
-  for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-    boxes[t].lo = glm::min(glm::min(vertex(mesh, t, 0), vertex(mesh, t, 1)), vertex(mesh, t, 2));
-    boxes[t].hi = glm::max(glm::max(vertex(mesh, t, 0), vertex(mesh, t, 1)), vertex(mesh, t, 2));
-  }
-  tree_->bvh = build_bvh(boxes);
+  tree_->bvh = build_bvh(triangle_boxes(mesh));
 }
 
 ExactMeshDistance::~ExactMeshDistance() = default;
