@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -250,10 +251,15 @@ TEST(MeshDistanceGrid, ExactQueryIsBruteForceBeyondTheBoxAndTheGridInIt) {
         ++beyond;
         EXPECT_EQ(exact.distance(p), brute) << "beyond the box at " << p.x << " " << p.y << " " << p.z;
         EXPECT_EQ(exact.signed_distance(p), brute);
+        // A bound at or above the distance changes nothing; one below it gives +infinity.
+        EXPECT_EQ(exact.signed_distance(p, brute), brute);
+        EXPECT_EQ(exact.distance(p, 2.0f * brute), brute);
+        EXPECT_EQ(exact.signed_distance(p, 0.99f * brute), std::numeric_limits<float>::infinity());
         lower_bound += grid_distance(grid, mesh, p) < brute;  // what the grid alone gives there
       } else {
         EXPECT_EQ(exact.distance(p), grid_distance(grid, mesh, p));
         EXPECT_EQ(exact.signed_distance(p), grid_signed_distance(grid, mesh, p));
+        EXPECT_EQ(exact.signed_distance(p, 0.0f), grid_signed_distance(grid, mesh, p));  // the grid's, bound or not
       }
     }
     EXPECT_GT(beyond, 200);

@@ -37,31 +37,37 @@ struct SamplingGrids {
 };
 
 // One instance's signed distance at world point p (a lower bound in magnitude outside its grid box
-// unless the mesh has an exact query).
-float signed_instance_distance(const Scene& scene, const SamplingGrids& sampling, uint32_t i, const glm::vec3& p) {
+// unless the mesh has an exact query). Where the exact query answers, a surface farther than
+// `bound` may read as +infinity (ExactMeshDistance).
+float signed_instance_distance(const Scene& scene, const SamplingGrids& sampling, uint32_t i, const glm::vec3& p,
+                               float bound = std::numeric_limits<float>::infinity()) {
   const Instance& instance = scene.instances[i];
   const glm::vec3 local((*sampling.world_to_object)[i] * glm::vec4(p, 1.0f));
   const std::optional<ExactMeshDistance>& exact = sampling.exact[instance.mesh];
-  const float d = exact ? exact->signed_distance(local)
+  // The bound in object space, a little wider so that rounding never drops a surface at it.
+  const float d = exact ? exact->signed_distance(local, bound / instance.transform.scale * 1.001f)
                         : grid_signed_distance(*sampling.grids[instance.mesh], scene.meshes[instance.mesh], local);
   return d * instance.transform.scale;
 }
 
 // The composite over `candidates`: the least magnitude, negative inside any of them (so that its
 // magnitude is the distance to the union of the surfaces, never more). Instances whose box is
-// farther than the best so far are skipped (their surface lies in their box).
+// farther than the best so far are skipped (their surface lies in their box), and the best so far
+// bounds each exact query. Where every surface is farther than `cap`, the value is `cap` (a
+// sample clamped to the band needs no more).
 struct Composite {
   float value = std::numeric_limits<float>::max();
   bool inside = false;
 };
 template <class Candidates>
 Composite composite(const Scene& scene, const SamplingGrids& sampling, const std::vector<Aabb>& boxes, const Candidates& candidates,
-                    const glm::vec3& p) {
+                    const glm::vec3& p, float cap = std::numeric_limits<float>::max()) {
   Composite c;
+  c.value = cap;
   for (uint32_t i : candidates) {
     const float box = box_distance(boxes[i], p);
     if (box > 0.0f && box >= c.value) continue;  // outside its box: farther than the best, and not inside it
-    const float d = signed_instance_distance(scene, sampling, i, p);
+    const float d = signed_instance_distance(scene, sampling, i, p, c.value);
     c.value = std::min(c.value, std::abs(d));
     c.inside = c.inside || d < 0.0f;
   }
@@ -219,8 +225,9 @@ GlobalField build_global_field(const Scene& scene, const SceneSdf& scene_sdf, co
       const glm::vec3 centre = field.origin + brick_size * (glm::vec3(coords_of(b, field.bricks)) + 0.5f);
       float nearest = std::numeric_limits<float>::max();
       for (uint32_t i : cands) {
-        if (box_distance(boxes[i], centre) - reach > std::max(field.band, list_slack)) continue;
-        const float d = std::abs(signed_instance_distance(scene, sampling, i, centre));
+        const float relevant = reach + std::max(field.band, list_slack);  // farther: neither listed nor stored for it
+        if (box_distance(boxes[i], centre) > relevant) continue;
+        const float d = std::abs(signed_instance_distance(scene, sampling, i, centre, relevant));
         nearest = std::min(nearest, d);
         if (d - reach <= list_slack) lists[b].push_back(i);
       }
@@ -278,7 +285,7 @@ GlobalField build_global_field(const Scene& scene, const SceneSdf& scene_sdf, co
         for (uint32_t y = 0; y < kBrickSide; ++y)
           for (uint32_t x = 0; x < kBrickSide; ++x, out += sample_bytes) {
             const glm::vec3 p = field.origin + field.voxel * glm::vec3(c * kBrickCells + glm::uvec3(x, y, z));
-            store_sample(params.format, field.band, signed_value(composite(scene, sampling, boxes, cands, p)), out);
+            store_sample(params.format, field.band, signed_value(composite(scene, sampling, boxes, cands, p, field.band)), out);
           }
     }
     progress.advance(r.size());

@@ -757,13 +757,15 @@ ExactMeshDistance::~ExactMeshDistance() = default;
 ExactMeshDistance::ExactMeshDistance(ExactMeshDistance&&) noexcept = default;
 ExactMeshDistance& ExactMeshDistance::operator=(ExactMeshDistance&&) noexcept = default;
 
-float ExactMeshDistance::nearest(const glm::vec3& p, uint32_t& triangle) const {
+float ExactMeshDistance::nearest(const glm::vec3& p, float bound, uint32_t& triangle) const {
   const float d = grid_distance(*grid_, *mesh_, p, &triangle);
   if (triangle != UINT32_MAX) return d;  // in the grid box
   // Beyond the box: every triangle's distance, pruned by the BVH; a box exactly as far as the
-  // best so far is still opened, so that a tie goes to the lowest index.
+  // best so far is still opened, so that a tie goes to the lowest index. A bound prunes from the
+  // start: most samples of a field lie near some other instance, so that this one's nearest
+  // triangle need not be found (92 % of sdf-global's build on thesis:bunny:1000 before).
   const Bvh& bvh = tree_->bvh;
-  float best = kInf;
+  float best = bound * bound * 1.000001f;  // a surface at the bound is found despite the squaring's rounding
   uint32_t stack[64];
   int top = 0;
   stack[top++] = 0;
@@ -787,17 +789,18 @@ float ExactMeshDistance::nearest(const glm::vec3& p, uint32_t& triangle) const {
     stack[top++] = left_first ? r : l;  // the nearer child on top
     stack[top++] = left_first ? l : r;
   }
-  return std::sqrt(best);
+  return triangle == UINT32_MAX ? kInf : std::sqrt(best);  // nothing within the bound
 }
 
-float ExactMeshDistance::distance(const glm::vec3& p) const {
+float ExactMeshDistance::distance(const glm::vec3& p, float bound) const {
   uint32_t t = UINT32_MAX;
-  return nearest(p, t);
+  return nearest(p, bound, t);
 }
 
-float ExactMeshDistance::signed_distance(const glm::vec3& p) const {
+float ExactMeshDistance::signed_distance(const glm::vec3& p, float bound) const {
   uint32_t t = UINT32_MAX;
-  const float d = nearest(p, t);
+  const float d = nearest(p, bound, t);
+  if (t == UINT32_MAX) return d;  // farther than the bound: outside the box, so outside the mesh
   if (t == kFarCellTriangle) return grid_->far_distance[cell_of(*grid_, p)] < 0.0f ? -d : d;  // the far cell's side
   return inside_by_pseudo_normal(*grid_, *mesh_, t, p) ? -d : d;
 }

@@ -17,6 +17,7 @@
 // `check-sdf --cells-per-extent`), not as a default for every mesh.
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -168,11 +169,13 @@ class ExactMeshDistance {
   ~ExactMeshDistance();
   ExactMeshDistance(ExactMeshDistance&&) noexcept;
   ExactMeshDistance& operator=(ExactMeshDistance&&) noexcept;
-  float distance(const glm::vec3& p) const;
-  float signed_distance(const glm::vec3& p) const;
+  // Beyond the box, a surface farther than `bound` is not searched for: the answer is then
+  // +infinity (callers clamp to a band or take a minimum); at or within `bound` it is exact.
+  float distance(const glm::vec3& p, float bound = std::numeric_limits<float>::infinity()) const;
+  float signed_distance(const glm::vec3& p, float bound = std::numeric_limits<float>::infinity()) const;
 
  private:
-  float nearest(const glm::vec3& p, uint32_t& triangle) const;
+  float nearest(const glm::vec3& p, float bound, uint32_t& triangle) const;
   struct Tree;
   const MeshDistanceGrid* grid_;
   const Mesh* mesh_;
