@@ -7,11 +7,12 @@
 // Both levels test a node's two child boxes together and descend into the nearer one, the
 // farther one pushed with its entry distance, and skipped when popped beyond the nearest hit.
 // Möller–Trumbore as tri-aabb, so hits agree with Embree to rounding. A level's stack holds
-// BVH_STACK_SIZE entries, defined by the renderer as the scene's deepest BVH: a traversal pushes
-// at most one entry per level it descends, so it never overflows. A traversal visits each node at
-// most once, so it stops after BVH_TOP_NODES (BVH_MESH_NODES: the largest mesh BVH's) visits
-// whatever the data holds. Running out of either would count the pixel as cut short, never
-// silently wrong.
+// BVH_STACK_SIZE entries, defined by the renderer as the scene's deepest BVH rounded up to 8 (so
+// that scenes share kernels): a traversal pushes at most one entry per level it descends, so it
+// never overflows. A traversal visits each node at most once, so it stops after as many visits as
+// its level's table holds nodes (read from the table: no per-scene kernel), whatever the data
+// holds; BVH_VISIT_LIMIT (tests only) lowers that. Running out of either would count the pixel as
+// cut short, never silently wrong.
 
 #include "frame_bindings.glsl"
 #include "triangle_tables.glsl"
@@ -23,6 +24,15 @@ bool traversal_cut = false;
 #define TRAVERSAL_OVERFLOW traversal_cut
 
 const float MISS = 3.4e38f;
+
+// The most node visits a traversal of a table may make: its node count (4 texels a node).
+uint visit_bound(uint nodes) {
+#ifdef BVH_VISIT_LIMIT
+  return min(nodes, BVH_VISIT_LIMIT);
+#else
+  return nodes;
+#endif
+}
 
 // Does the ray enter a child (its entry from box_entry) before tmax? MISS never does, also when
 // tmax is not below it.
@@ -71,8 +81,9 @@ bool trace_mesh(uint inst, vec3 o, vec3 d, bool any, inout float tmax, inout uin
   uint sp = 0u;
   uint node = instances[inst].info.w;
   bool found = false;
+  const uint visit_limit = visit_bound(uint(textureSize(mesh_nodes)) / 4u);
   for (uint visits = 0u;; ++visits) {
-    if (visits == BVH_MESH_NODES) {
+    if (visits == visit_limit) {
       traversal_cut = true;
       break;
     }
@@ -136,8 +147,9 @@ bool trace_scene(Ray ray, bool any, inout float tmax, out uint inst, out uint sl
   inst = NO_INSTANCE;
   slot = 0u;
   uv = vec2(0.0f);
+  const uint visit_limit = visit_bound(uint(textureSize(top_nodes)) / 4u);
   for (uint visits = 0u;; ++visits) {
-    if (visits == BVH_TOP_NODES) {
+    if (visits == visit_limit) {
       traversal_cut = true;
       break;
     }

@@ -50,9 +50,9 @@ BvhRenderer::BvhRenderer(const BackendOptions& options)
       runner_(
           context_,
           [this](const std::string& defines, const std::vector<KernelBinding>& bindings) {
-            return kernels_(defines + "#define BVH_STACK_SIZE " + std::to_string(stack_size_) + "\n#define BVH_TOP_NODES " +
-                                std::to_string(visits_.top) + "u\n#define BVH_MESH_NODES " + std::to_string(visits_.meshes) + "u\n",
-                            bindings);
+            std::string limits = "#define BVH_STACK_SIZE " + std::to_string(stack_size_) + "\n";
+            if (visit_limit_ > 0) limits += "#define BVH_VISIT_LIMIT " + std::to_string(visit_limit_) + "u\n";
+            return kernels_(defines + limits, bindings);
           },
           kBvhCounters, options.whitted_passes) {
   const std::string config = "threads=" + std::to_string(cpu_thread_count(options));
@@ -68,12 +68,10 @@ void BvhRenderer::prepare(const Scene& scene) {
   TriangleLayout layout;
   std::vector<BvhNode> mesh_nodes;
   Depths depths;
-  Depths visits;  // a traversal's bound: each level's node count (the largest mesh BVH's)
   for (const Mesh& mesh : scene.meshes) {
     FlatBvh bvh = build_mesh_bvh(embree_, mesh, mesh_params());
     check_depth(bvh, mesh_params(), "mesh '" + mesh.name + "'");
     depths.meshes = std::max(depths.meshes, bvh.depth);
-    visits.meshes = std::max(visits.meshes, static_cast<uint32_t>(bvh.nodes.size()));
     const uint32_t root = static_cast<uint32_t>(mesh_nodes.size());
     for_each_child(bvh.nodes, [root](uint32_t& child, uint32_t count) {
       if (count == 0) child += root;  // inner nodes: into the concatenated array
@@ -88,7 +86,6 @@ void BvhRenderer::prepare(const Scene& scene) {
   FlatBvh top = build_bvh(embree_, boxes, top_params());
   check_depth(top, top_params(), "the instances");
   depths.top = top.depth;
-  visits.top = static_cast<uint32_t>(top.nodes.size());
   for_each_child(top.nodes, [&top](uint32_t& child, uint32_t count) {
     if (count > 0 && child < top.references.size()) child = top.references[child];
   });
@@ -105,10 +102,10 @@ void BvhRenderer::prepare(const Scene& scene) {
   bindings.push_back({11, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, &mesh_nodes_});
   bindings.push_back({12, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, &top_nodes_});
   depths_ = depths;
-  stack_size_ = std::max({depths.top, depths.meshes, 1u});  // before set_scene: the kernels are built for it
-  if (stack_limit_ > 0) stack_size_ = std::min(stack_size_, stack_limit_);
-  visits_ = {std::max(visits.top, 1u), std::max(visits.meshes, 1u)};
-  if (visit_limit_ > 0) visits_ = {std::min(visits.top, visit_limit_), std::min(visits.meshes, visit_limit_)};
+  // Before set_scene: the kernels are built for it. Rounded up to 8, so that most scenes share a
+  // kernel (lavapipe compiles each variant anew: the test suite's main cost).
+  stack_size_ = (std::max({depths.top, depths.meshes, 1u}) + 7u) / 8u * 8u;
+  if (stack_limit_ > 0) stack_size_ = std::min(std::max({depths.top, depths.meshes, 1u}), stack_limit_);
   runner_.set_scene(scene, bindings);
 }
 

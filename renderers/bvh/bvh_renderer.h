@@ -42,9 +42,8 @@ class BvhRenderer : public VulkanRenderer {
   Depths depths_;
   uint32_t stack_size_ = 1;
   uint32_t stack_limit_ = 0;
-  Depths visits_{1, 1};  // node visits a traversal may make (BVH_TOP_NODES, BVH_MESH_NODES)
   uint32_t visit_limit_ = 0;
-  TileKernelFactory kernels_;  // bvh.comp; the runner's factory adds BVH_STACK_SIZE
+  TileKernelFactory kernels_;  // bvh.comp; the runner's factory adds BVH_STACK_SIZE (and BVH_VISIT_LIMIT)
   VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
 };
 
