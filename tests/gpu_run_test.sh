@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # harness/scripts/gpu_run.sh end to end on lavapipe at a tiny size (issue 17): the device folder,
 # every compare agreeing, the tables' rows, and one-line errors for bad flags and devices.
-# Usage: tests/gpu_run_test.sh SDFBENCH_BINARY [run|reruns] (two ctest tests, each under a minute)
+# Usage: tests/gpu_run_test.sh SDFBENCH_BINARY [run|sweeps|reruns] (three ctest tests, each under a minute)
 set -euo pipefail
 binary=$(realpath "$1")
-part=${2:-run}  # run: the whole run and what it writes; reruns: --tables-only, resume, retries, errors
+part=${2:-run}  # run: the compares and a table; sweeps: the sweeps; reruns: --tables-only, the report, resume, retries, errors
 root=$(cd "$(dirname "$0")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -12,11 +12,11 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 script=$root/harness/scripts/gpu_run.sh
 
 if [[ $part == run ]]; then
-# One mesh's compares (primary, shadow) and the two whitted scenes: the other meshes run the same loop.
+# The compares (one mesh's primary and shadow, and the two whitted scenes: the other meshes run the
+# same loop) and a table of one object count: --steps leaves out the sweeps (the sweeps part).
 "$script" --binary "$binary" --device lavapipe --size 32x18 --compare-size 32x18 --compare-objects 3 --compare-meshes sphere \
-  --budget-s 1 --frames 1 \
-  --storage-scene thesis:sphere:10 --out "$work/out" -- --table 6.3 --meshes sphere --objects 1,10 --check-size 32x18 >"$work/log" 2>&1 ||
-  { tail -20 "$work/log"; fail "gpu_run.sh on lavapipe exited $?"; }
+  --budget-s 1 --frames 1 --steps compares,tables --out "$work/out" -- --table 6.3 --meshes sphere --objects 1 --check-size 32x18 \
+  >"$work/log" 2>&1 || { tail -20 "$work/log"; fail "gpu_run.sh on lavapipe exited $?"; }
 dir=$(echo "$work"/out/llvmpipe-*)
 [[ -d $dir ]] || fail "no folder named after the device under $work/out: $(ls "$work/out")"
 for f in info.txt agreement.txt tables.csv tables.md tables_command.txt report.html; do [[ -s $dir/$f ]] || fail "$f missing or empty"; done
@@ -25,6 +25,22 @@ grep -q "Vulkan devices" "$dir/info.txt" || fail "info.txt lacks sdfbench info's
 grep -q 'compare --scene thesis:sphere:3 --mode shadow' "$dir/agreement.txt" || fail "no shadow compare of thesis:sphere:3"
 ! grep -q 'thesis:bunny' "$dir/agreement.txt" || fail "--compare-meshes sphere compared the bunny"
 grep -q "vk-rt" "$dir/agreement.txt" || fail "vk-rt (supported on lavapipe) left out of the compares"
+[[ ! -e $dir/storage_vs_texel.csv && ! -e $dir/brick_fetch.csv ]] || fail "--steps compares,tables ran the sweeps"
+done_line=$(grep "gpu_run: done:" "$work/log")
+[[ $done_line == *agreement.txt*tables.csv*report.html* && $done_line != *storage_vs_texel* ]] || fail "the done line: $done_line"
+rows=$(($(wc -l <"$dir/tables.csv") - 1))
+[[ $rows -eq 8 ]] || fail "tables.csv has $rows rows, expected 8 (sphere x 1 object x 8 backends)"
+grep -q -- "--device lavapipe" "$dir/tables_command.txt" || fail "tables_command.txt does not record the command"
+  echo "gpu_run.sh test (run): all passed"
+  exit 0
+fi
+
+if [[ $part == sweeps ]]; then
+# The sweeps alone (--steps sweeps): no compares, no tables, the report of the sweeps' CSVs.
+"$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --steps sweeps \
+  --storage-scene thesis:sphere:3 --out "$work/out" >"$work/log" 2>&1 || { tail -20 "$work/log"; fail "gpu_run.sh --steps sweeps exited $?"; }
+dir=$(echo "$work"/out/llvmpipe-*)
+[[ ! -e $dir/agreement.txt && ! -e $dir/tables.csv && ! -e $dir/info.txt ]] || fail "--steps sweeps ran more: $(ls "$dir")"
 # Texel vs storage buffers: 2 backends x 2 modes x both, every row agreeing.
 [[ -s $dir/storage_vs_texel.md ]] || fail "storage_vs_texel.md missing or empty"
 svt_rows=$(($(wc -l <"$dir/storage_vs_texel.csv") - 1))
@@ -35,15 +51,11 @@ bf_rows=$(($(wc -l <"$dir/brick_fetch.csv") - 1))
 [[ $bf_rows -eq 8 ]] || fail "brick_fetch.csv has $bf_rows rows, expected 8"
 [[ $(grep -c ',ok,' "$dir/brick_fetch.csv") -eq 8 ]] || fail "not every brick_fetch row agrees"
 grep -q "brick_fetch=sampler" "$dir/brick_fetch.csv" || fail "brick_fetch.csv has no sampler row"
-rows=$(($(wc -l <"$dir/tables.csv") - 1))
-[[ $rows -eq 16 ]] || fail "tables.csv has $rows rows, expected 16 (sphere x 1,10 objects x 8 backends)"
-grep -q -- "--device lavapipe" "$dir/tables_command.txt" || fail "tables_command.txt does not record the command"
-# The report: every table row on the page with its three kept images.
-[[ $(ls "$dir"/images/*.png | wc -l) -eq 48 ]] || fail "expected 48 kept images (16 rows x 3) in $dir/images"
-[[ $(grep -o '<tr id="f0r[0-9]*"' "$dir/report.html" | wc -l) -eq 16 ]] || fail "report.html does not show the 16 table rows"
-[[ $(grep -o '<img src="report_files/' "$dir/report.html" | wc -l) -ge 48 ]] || fail "report.html lacks the rows' images"
-# Again with --tables-only: no compares, the finished tables kept as they are.
-  echo "gpu_run.sh test (run): all passed"
+[[ $(grep -o '<tr id="f[01]r[0-9]*"' "$dir/report.html" | wc -l) -eq 16 ]] || fail "report.html does not show the sweeps' 16 rows"
+done_line=$(grep "gpu_run: done:" "$work/log")
+[[ $done_line == *storage_vs_texel.csv*brick_fetch.csv*report.html* && $done_line != *agreement* && $done_line != *tables.csv* ]] ||
+  fail "the done line: $done_line"
+  echo "gpu_run.sh test (sweeps): all passed"
   exit 0
 fi
 
@@ -51,6 +63,12 @@ fi
 "$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --out "$work/out" --tables-only \
   -- --table 6.3 --meshes sphere --objects 1,10 --check-size 32x18 >"$work/log" 2>&1 || { tail -5 "$work/log"; fail "--tables-only run exited non-zero"; }
 dir=$(echo "$work"/out/llvmpipe-*)
+rows=$(($(wc -l <"$dir/tables.csv") - 1))
+[[ $rows -eq 16 ]] || fail "tables.csv has $rows rows, expected 16 (sphere x 1,10 objects x 8 backends)"
+# The report: every table row on the page with its three kept images.
+[[ $(ls "$dir"/images/*.png | wc -l) -eq 48 ]] || fail "expected 48 kept images (16 rows x 3) in $dir/images"
+[[ $(grep -o '<tr id="f0r[0-9]*"' "$dir/report.html" | wc -l) -eq 16 ]] || fail "report.html does not show the 16 table rows"
+[[ $(grep -o '<img src="report_files/' "$dir/report.html" | wc -l) -ge 48 ]] || fail "report.html lacks the rows' images"
 cp "$dir/tables.csv" "$work/before.csv"
 "$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --out "$work/out" --tables-only \
   -- --table 6.3 --meshes sphere --objects 1,10 --check-size 32x18 >"$work/log2" 2>&1 || { tail -5 "$work/log2"; fail "--tables-only rerun exited non-zero"; }
@@ -99,5 +117,6 @@ expect_error "--compare-objects takes a whole number" --compare-objects 0
 expect_error "--compare-meshes takes mesh names" --compare-meshes 'bunny;rm'
 expect_error "--compare-meshes takes mesh names" --compare-meshes ''
 expect_error "--budget-s takes seconds" --budget-s -1
+expect_error "--steps takes compares, sweeps and tables" --steps compares,plots
 [[ ! -e $work/bad ]] || fail "a refused run created its output folder"
 echo "gpu_run.sh test (reruns): all passed"

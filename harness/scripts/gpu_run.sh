@@ -7,9 +7,12 @@
 #
 #   harness/scripts/gpu_run.sh [--device gpu] [--size 1280x720] [--compare-size 640x360]
 #       [--budget-s 2] [--frames 3] [--minutes 8] [--out results] [--binary build/sdfbench]
-#       [--storage-scene thesis:bunny:1000] [--compare-objects 100] [--compare-meshes LIST] [--tables-only]
-#       [-- TABLE_FLAGS...]   (e.g. -- --table 6.3 --objects 1,10: passed to `sdfbench table`)
+#       [--storage-scene thesis:bunny:1000] [--compare-objects 100] [--compare-meshes LIST]
+#       [--steps compares,sweeps,tables | --tables-only] [-- TABLE_FLAGS...]
+#       (TABLE_FLAGS, e.g. -- --table 6.3 --objects 1,10: passed to `sdfbench table`)
 #
+# --steps: which parts run (default all three, in this order; the device's info.txt goes with the
+# compares); --tables-only is --steps tables. The report is written of the CSVs the folder holds.
 # Between the compares and the tables: the SDF tables in texel buffers against storage buffers
 # (`sweep --storage-tables 0,1`, sdf-octree and sdf-hash, primary and shadow, on --storage-scene
 # at --size), side by side in storage_vs_texel.csv/.md (lavapipe: texel buffers; a GPU may differ);
@@ -33,26 +36,30 @@ device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=re
 compare_objects=100 compare_meshes=bunny,teapot,monkey,sphere
 binary=${SDFBENCH:-build/sdfbench}
 [[ -n ${SDFBENCH:-} || -x $binary || ! -x sdfbench ]] || binary=./sdfbench
-table_flags=() tables_only=0 failed=0
+table_flags=() steps=compares,sweeps,tables failed=0
 die() { echo "gpu_run.sh: error: $*" >&2; exit 1; }
 from_caller() { if [[ $1 == /* ]]; then echo "$1"; else echo "$caller_dir/$1"; fi; }
 while [[ $# -gt 0 ]]; do
   case "$1" in
-    --device|--size|--compare-size|--budget-s|--frames|--minutes|--out|--binary|--storage-scene|--compare-objects|--compare-meshes)
+    --device|--size|--compare-size|--budget-s|--frames|--minutes|--out|--binary|--storage-scene|--compare-objects|--compare-meshes|--steps)
       [[ $# -ge 2 ]] || die "$1 needs a value"
       case "$1" in
         --device) device=$2 ;; --size) size=$2 ;; --compare-size) compare_size=$2 ;; --budget-s) budget=$2 ;;
         --frames) frames=$2 ;; --minutes) minutes=$2 ;; --out) out=$(from_caller "$2") ;; --binary) binary=$(from_caller "$2") ;;
         --storage-scene) storage_scene=$2 ;; --compare-objects) compare_objects=$2 ;; --compare-meshes) compare_meshes=$2 ;;
+        --steps) steps=$2 ;;
       esac
       shift 2 ;;
-    --tables-only) tables_only=1; shift ;;
+    --tables-only) steps=tables; shift ;;
     --) shift; table_flags=("$@"); break ;;
-    -h|--help) sed -n 2,28p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,31p "$0"; exit 0 ;;
     *) die "unknown argument '$1' (see --help)" ;;
   esac
 done
 # Every value checked before minutes of work.
+[[ $steps =~ ^(compares|sweeps|tables)(,(compares|sweeps|tables))*$ ]] ||
+  die "--steps takes compares, sweeps and tables separated by commas, not '$steps'"
+runs() { [[ ,$steps, == *,$1,* ]]; }
 [[ $minutes =~ ^[0-9]{1,5}$ && $minutes -gt 0 ]] || die "--minutes takes whole minutes > 0, not '$minutes'"
 [[ $frames =~ ^[0-9]{1,5}$ && $frames -gt 0 ]] || die "--frames takes a whole number > 0, not '$frames'"
 [[ $compare_objects =~ ^[0-9]{1,7}$ && $compare_objects -gt 0 ]] || die "--compare-objects takes a whole number > 0, not '$compare_objects'"
@@ -89,8 +96,7 @@ else
   # (unless the table flags name their own backends)
   [[ " ${table_flags[*]} " == *" --backends"* ]] || table_flags=(--backends "embree,$backends" "${table_flags[@]}")
 fi
-if [[ $tables_only -eq 0 ]]; then
-
+if runs compares; then
   {
     echo "# $(date -u +%Y-%m-%dT%H:%M:%SZ) harness/scripts/gpu_run.sh on $(uname -n)"
     "$binary" --version
@@ -114,7 +120,9 @@ if [[ $tables_only -eq 0 ]]; then
     for mode in primary shadow; do run_compare "thesis:$mesh:$compare_objects" "$mode"; done
   done
   for scene in scenes/fig6_1.json scenes/fig6_3.json; do run_compare "$scene" whitted; done
+fi
 
+if runs sweeps; then
   # Texel against storage buffers for the SDF tables, each pair side by side in one sweep.
   parts="$dir/storage_vs_texel"
   mkdir -p "$parts"
@@ -155,27 +163,33 @@ if [[ $tables_only -eq 0 ]]; then
     die "merging $parts/*.csv failed"
 fi
 
-# The tables, under the wall-clock limit (a cut run resumes on the next call).
-echo "gpu_run: tables at $size, ${budget} s per configuration, at most $minutes min" >&2
-table=("$binary" table --size "$size" --budget-s "$budget" --frames "$frames" --device "$device" --resume
-       --csv "$dir/tables.csv" --markdown "$dir/tables.md" --keep-images "$dir/images" "${table_flags[@]}")
-echo "${table[*]}" >"$dir/tables_command.txt"
-status=0
-timeout --signal=INT "${minutes}m" "${table[@]}" || status=$?
-case $status in
-  0) ;;
-  2) disagreed=1 ;;
-  4) failed=1 ;;
-  124|130) echo "gpu_run: the tables were cut at $minutes min; run the same command again (with --tables-only) to finish them" >&2; exit 3 ;;
-  *) die "the tables failed (exit $status)" ;;
-esac
-# The page of every CSV with each table row's check images beside the reference's.
-reports=("$dir/tables.csv")
-for f in storage_vs_texel brick_fetch; do [[ -f $dir/$f.csv ]] && reports+=("$dir/$f.csv"); done
-"$binary" report "${reports[@]}" --out "$dir/report.html" >/dev/null || die "sdfbench report failed"
+if runs tables; then
+  # The tables, under the wall-clock limit (a cut run resumes on the next call).
+  echo "gpu_run: tables at $size, ${budget} s per configuration, at most $minutes min" >&2
+  table=("$binary" table --size "$size" --budget-s "$budget" --frames "$frames" --device "$device" --resume
+         --csv "$dir/tables.csv" --markdown "$dir/tables.md" --keep-images "$dir/images" "${table_flags[@]}")
+  echo "${table[*]}" >"$dir/tables_command.txt"
+  status=0
+  timeout --signal=INT "${minutes}m" "${table[@]}" || status=$?
+  case $status in
+    0) ;;
+    2) disagreed=1 ;;
+    4) failed=1 ;;
+    124|130) echo "gpu_run: the tables were cut at $minutes min; run the same command again (with --tables-only) to finish them" >&2; exit 3 ;;
+    *) die "the tables failed (exit $status)" ;;
+  esac
+fi
+# The page of every CSV the folder holds, with each table row's check images beside the reference's.
+reports=()
+for f in tables storage_vs_texel brick_fetch; do [[ -f $dir/$f.csv ]] && reports+=("$dir/$f.csv"); done
+if [[ ${#reports[@]} -gt 0 ]]; then
+  "$binary" report "${reports[@]}" --out "$dir/report.html" >/dev/null || die "sdfbench report failed"
+fi
 [[ $failed -eq 0 ]] || { echo "gpu_run: some configurations failed (ERROR rows in $dir/tables.csv or the storage sweeps); run it again to retry them" >&2; exit 4; }
 [[ $disagreed -eq 0 ]] || { echo "gpu_run: a compare or a table row disagreed; see $agreement and $dir/tables.md" >&2; exit 2; }
-written=()  # what this call wrote (--tables-only leaves the info, compares and sweeps as they were)
-if [[ $tables_only -eq 0 ]]; then written+=(info.txt agreement.txt storage_vs_texel.csv storage_vs_texel.md brick_fetch.csv brick_fetch.md); fi
-written+=(tables.csv tables.md report.html)
+written=()  # what this call wrote (the steps it did not run leave their files as they were)
+if runs compares; then written+=(info.txt agreement.txt); fi
+if runs sweeps; then written+=(storage_vs_texel.csv storage_vs_texel.md brick_fetch.csv brick_fetch.md); fi
+if runs tables; then written+=(tables.csv tables.md); fi
+[[ ${#reports[@]} -eq 0 ]] || written+=(report.html)
 echo "gpu_run: done: $dir ($(IFS=,; echo "${written[*]}" | sed 's/,/, /g'))" >&2
