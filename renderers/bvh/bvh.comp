@@ -71,8 +71,8 @@ NodeVisit visit(vec4 a, vec4 b, vec4 c, vec4 d, vec3 inv_dir, vec3 o_inv, float 
 }
 
 // The nearest (or, for `any`, some) triangle of instance `inst` with t < tmax, the ray in the
-// instance's frame; tmax, slot and uv are updated on a hit.
-bool trace_mesh(uint inst, vec3 o, vec3 d, bool any, inout float tmax, inout uint slot, inout vec2 uv) {
+// instance's frame; tmax, slot and uv are updated on a hit. visit_limit: visit_bound of the mesh table.
+bool trace_mesh(uint inst, vec3 o, vec3 d, bool any, uint visit_limit, inout float tmax, inout uint slot, inout vec2 uv) {
   vec3 inv_dir = safe_inverse(d);
   vec3 o_inv = o * inv_dir;
   int first = int(instances[inst].info.x);
@@ -81,7 +81,6 @@ bool trace_mesh(uint inst, vec3 o, vec3 d, bool any, inout float tmax, inout uin
   uint sp = 0u;
   uint node = instances[inst].info.w;
   bool found = false;
-  const uint visit_limit = visit_bound(uint(textureSize(mesh_nodes)) / 4u);
   for (uint visits = 0u;; ++visits) {
     if (visits == visit_limit) {
       traversal_cut = true;
@@ -148,6 +147,7 @@ bool trace_scene(Ray ray, bool any, inout float tmax, out uint inst, out uint sl
   slot = 0u;
   uv = vec2(0.0f);
   const uint visit_limit = visit_bound(uint(textureSize(top_nodes)) / 4u);
+  const uint mesh_visit_limit = visit_bound(uint(textureSize(mesh_nodes)) / 4u);  // once a ray, not once an instance
   for (uint visits = 0u;; ++visits) {
     if (visits == visit_limit) {
       traversal_cut = true;
@@ -161,7 +161,7 @@ bool trace_scene(Ray ray, bool any, inout float tmax, out uint inst, out uint sl
       uint i = v.child[k];  // a leaf: one instance
       vec3 o = vec3(instances[i].world_to_object * vec4(ray.origin, 1.0f));
       vec3 d = vec3(instances[i].world_to_object * vec4(ray.dir, 0.0f));
-      if (trace_mesh(i, o, d, any, tmax, slot, uv)) {
+      if (trace_mesh(i, o, d, any, mesh_visit_limit, tmax, slot, uv)) {
         inst = i;
         found = true;
         if (any) return true;

@@ -104,8 +104,8 @@ void BvhRenderer::prepare(const Scene& scene) {
   depths_ = depths;
   // Before set_scene: the kernels are built for it. Rounded up to 8, so that most scenes share a
   // kernel (lavapipe compiles each variant anew: the test suite's main cost).
-  stack_size_ = (std::max({depths.top, depths.meshes, 1u}) + 7u) / 8u * 8u;
-  if (stack_limit_ > 0) stack_size_ = std::min(std::max({depths.top, depths.meshes, 1u}), stack_limit_);
+  const uint32_t deepest = std::max({depths.top, depths.meshes, 1u});
+  stack_size_ = stack_limit_ > 0 ? std::min(deepest, stack_limit_) : (deepest + 7u) / 8u * 8u;
   runner_.set_scene(scene, bindings);
 }
 

@@ -93,7 +93,7 @@ BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_gri
     for (size_t b = r.begin(); b != r.end(); ++b) {
       const glm::uvec3 c = coords_of(b, field.bricks);
       const glm::vec3 centre = field.origin + brick_size * (glm::vec3(c) + 0.5f);
-      stored[b] = exact.distance(centre, (reach + field.band) * 1.001f) - reach < field.band;  // farther: +inf
+      stored[b] = exact.distance(centre, reach + field.band) - reach < field.band;  // farther: +inf
     }
   });
   field.indirection.assign(brick_count, kEmptyBrick);
@@ -118,7 +118,7 @@ BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& given_gri
         for (uint32_t y = 0; y < kBrickSide; ++y)
           for (uint32_t x = 0; x < kBrickSide; ++x, out += sample_bytes) {
             const glm::vec3 p = field.origin + field.voxel * glm::vec3(c * kBrickCells + glm::uvec3(x, y, z));
-            store_sample(params.format, field.band, exact.signed_distance(p, field.band * 1.001f), out);  // clamped: no farther
+            store_sample(params.format, field.band, exact.signed_distance(p, field.band), out);  // clamped: no farther
           }
     }
     progress.advance(r.size());

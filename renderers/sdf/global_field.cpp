@@ -218,6 +218,7 @@ GlobalField build_global_field(const Scene& scene, const SceneSdf& scene_sdf, co
   // Which bricks are stored (a point of it may come within the band) and which instances each lists.
   std::vector<uint8_t> stored(brick_count, 0);
   std::vector<std::vector<uint32_t>> lists(brick_count);
+  const float relevant = reach + std::max(field.band, list_slack);  // farther: neither listed nor stored for it
   tbb::parallel_for(tbb::blocked_range<size_t>(0, brick_count), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t b = r.begin(); b != r.end(); ++b) {
       const auto cands = candidates_of(b);
@@ -225,7 +226,6 @@ GlobalField build_global_field(const Scene& scene, const SceneSdf& scene_sdf, co
       const glm::vec3 centre = field.origin + brick_size * (glm::vec3(coords_of(b, field.bricks)) + 0.5f);
       float nearest = std::numeric_limits<float>::max();
       for (uint32_t i : cands) {
-        const float relevant = reach + std::max(field.band, list_slack);  // farther: neither listed nor stored for it
         if (box_distance(boxes[i], centre) > relevant) continue;
         const float d = std::abs(signed_instance_distance(scene, sampling, i, centre, relevant));
         nearest = std::min(nearest, d);
