@@ -15,6 +15,8 @@ inline void expect_same_grid(const sdf::MeshDistanceGrid& a, const sdf::MeshDist
   EXPECT_EQ(a.face_normals, b.face_normals);
   EXPECT_EQ(a.edge_normals, b.edge_normals);
   EXPECT_EQ(a.vertex_normals, b.vertex_normals);
+  EXPECT_EQ(a.far_distance, b.far_distance);
+  EXPECT_EQ(a.far_upper, b.far_upper);
 }
 
 }  // namespace sdfbench::test

@@ -16,6 +16,7 @@
 #include "renderers/sdf/cache/section_codec.h"
 #include "renderers/sdf/sdf_cache.h"
 #include "renderers/sdf/sdf_cache_format.h"
+#include "scenes/mesh.h"
 #include "scenes/random.h"
 #include "scenes/scene_source.h"
 #include "tests/grid_equality.h"
@@ -234,8 +235,8 @@ TEST_F(SdfCacheTest, ResealedHostileFilesAreRefused) {
       {"an element size the codec does not use", "element size", [&](Bytes& b) { poke<uint32_t>(b, kTable + kElementBytes, 5u); }},
       {"a section twice (cell_triangles as a second cell_begin)", "mesh grids: mesh 0 cell_begin appears twice",
        [&](Bytes& b) { poke<uint32_t>(b, kTable + 3 * kEntry + kIndex, 2u); }},
-      {"one structure in two codec versions", "in version 7 and 1", [&](Bytes& b) { poke<uint32_t>(b, kTable + kEntry + kVersion, 7u); }},
-      {"the mesh grids in another codec version", "holds mesh grids in codec version 7; this sdfbench reads version 1",
+      {"one structure in two codec versions", "in version 7 and 2", [&](Bytes& b) { poke<uint32_t>(b, kTable + kEntry + kVersion, 7u); }},
+      {"the mesh grids in another codec version", "holds mesh grids in codec version 7; this sdfbench reads version 2",
        [&](Bytes& b) {
          for (const size_t e : entries_named(c, "mesh ")) poke<uint32_t>(b, e + kVersion, 7u);
        }},
@@ -286,6 +287,69 @@ TEST_F(SdfCacheTest, ResealedHostileFilesAreRefused) {
     EXPECT_NE(std::string(e.what()).find("disagrees with itself: mesh '" + scene_->meshes[0].name + "''s grid has another cell size"),
               std::string::npos)
         << e.what();
+  }
+}
+
+// A scaled grid (a mesh over kScaledGridFromTriangles: far cells hold bounds, not lists) in the
+// cache: a bit-identical round trip, --fixed-grid a parameter it is stale for, and far-cell
+// sections that lie refused (a non-finite bound, a far cell with a list, an upper bound below
+// the bound, a count that is not the grid's).
+TEST_F(SdfCacheTest, ScaledGridsRoundTripAndLyingFarCellsAreRefused) {
+  Scene plane;  // 68 x 68 quads, 9248 triangles, wavy so that its cells differ
+  plane.meshes.emplace_back();
+  Mesh& mesh = plane.meshes[0];
+  mesh.name = "plane";
+  const uint32_t n = 68;
+  for (uint32_t y = 0; y <= n; ++y)
+    for (uint32_t x = 0; x <= n; ++x)
+      mesh.positions.emplace_back(float(x) / n, float(y) / n, 0.05f * std::sin(0.4f * float(x + 2 * y)));
+  for (uint32_t y = 0; y < n; ++y)
+    for (uint32_t x = 0; x < n; ++x) {
+      const uint32_t i = y * (n + 1) + x;
+      mesh.triangles.emplace_back(i, i + 1, i + n + 2);
+      mesh.triangles.emplace_back(i, i + n + 2, i + n + 1);
+    }
+  finish_mesh(mesh);
+  plane.instances.push_back(Instance{});
+  const sdf::MeshGridParams params;
+  ASSERT_TRUE(sdf::has_far_cells(params, mesh.triangles.size()));
+  const sdf::SceneSdf built = sdf::build_scene_sdf(plane, params, small_hash());
+  ASSERT_GT(built.mesh_grids[0].far_cell_count(), 0u);
+  const fs::path path = dir_.path() / "scaled.sdfcache";
+  sdf::write_sdf_cache(path, plane, built, params);
+  test::expect_same_grid(sdf::load_sdf_cache(path, plane, params, small_hash()).mesh_grids.at(0), built.mesh_grids[0]);
+  sdf::MeshGridParams fixed = params;
+  fixed.scale_with_triangles = false;
+  EXPECT_NE(error_of([&] { sdf::load_sdf_cache(path, plane, fixed, small_hash()); }).find("is stale: built with mesh grid"),
+            std::string::npos);
+
+  const Bytes valid = read_all(path);
+  const sdf::SdfCacheContents c = sdf::decode_sdf_cache(valid, "valid");
+  auto section = [&](const std::string& name) {
+    for (const sdf::SdfCacheSection& s : c.sections)
+      if (s.name == name) return s;
+    throw std::logic_error("no section " + name);
+  };
+  const sdf::MeshDistanceGrid& g = built.mesh_grids[0];
+  size_t far = 0, listed = 0;
+  while (!g.is_far(far)) ++far;
+  while (g.cell_begin[listed] == g.cell_begin[listed + 1]) ++listed;
+  const size_t distance = section("mesh 0 far distance").offset, upper = section("mesh 0 far upper").offset;
+  const std::vector<std::pair<std::string, std::function<void(Bytes&)>>> cases = {
+      {"a non-finite far-cell bound", [&](Bytes& b) { poke<float>(b, distance + 4 * far, NAN); }},
+      {"has a list, or an upper bound below its bound", [&](Bytes& b) { poke<float>(b, distance + 4 * listed, 0.5f); }},
+      {"has a list, or an upper bound below its bound",
+       [&](Bytes& b) { poke<float>(b, upper + 4 * far, 0.5f * std::abs(peek<float>(b, distance + 4 * far))); }},
+      {"far-cell bounds for", [&](Bytes& b) {
+         for (const size_t e : entries_named(c, "mesh 0 far upper")) poke<uint64_t>(b, e + kCount, 1u);
+       }},
+  };
+  for (const auto& [expected, mutate] : cases) {
+    SCOPED_TRACE(expected);
+    Bytes hostile = valid;
+    mutate(hostile);
+    sdf::reseal_sdf_cache(hostile);
+    EXPECT_NE(error_of([&] { sdf::decode_sdf_cache(hostile, "hostile"); }).find(expected), std::string::npos);
   }
 }
 
@@ -724,6 +788,7 @@ namespace {
 // This process' builds reused (build_reuse.h): the same geometry and parameters give the same
 // structure as a fresh build, with the first build's time; another parameter or mesh builds anew.
 TEST(SdfBuildReuse, SameInputsReuseAndOthersBuild) {
+  ::unsetenv("SDFBENCH_BUILD_STORE");  // this process' builds alone (ctest sets the store)
   sdf::forget_reused_builds();
   const Scene scene = load_scene("thesis:teapot:3");
   const Mesh& mesh = scene.meshes.at(0);
@@ -761,8 +826,24 @@ TEST(SdfBuildReuse, SameInputsReuseAndOthersBuild) {
   sdf::reuse_mesh_grid(mesh, params, build(params));
   EXPECT_EQ(builds, 6);
 
-  // The global field: keyed by the scene's geometry (an instance moved is another field).
+  // The scene hash (sdf-octree's and sdf-bricks'): keyed by the geometry and its parameters.
   const sdf::SceneSdf sdf = sdf::build_scene_sdf(scene, params, sdf::SceneHashParams{});
+  int hashes = 0;
+  const auto hash_of = [&](const sdf::SceneHashParams& p) {
+    return sdf::reuse_scene_hash(scene, params, p, [&] {
+      ++hashes;
+      return sdf::build_scene_hash(scene, sdf.mesh_grids, p);
+    });
+  };
+  EXPECT_EQ(hash_of(sdf::SceneHashParams{}).instance_lists, sdf.hash.instance_lists);
+  EXPECT_EQ(hashes, 0) << "build_scene_sdf's hash is reused";
+  sdf::SceneHashParams hash_only;
+  hash_only.octree_depth = 0;
+  hash_of(hash_only);
+  hash_of(hash_only);
+  EXPECT_EQ(hashes, 1);
+
+  // The global field: keyed by the scene's geometry (an instance moved is another field).
   sdf::GlobalFieldParams global;
   global.voxel = 0.1f;
   int fields = 0;
@@ -780,6 +861,63 @@ TEST(SdfBuildReuse, SameInputsReuseAndOthersBuild) {
   shifted.instances[0].transform.translation.x += 0.5f;
   field_of(shifted, sdf::build_scene_sdf(shifted, params, sdf::SceneHashParams{}));
   EXPECT_EQ(fields, 2);
+}
+
+// The store on disk (build_store.h): what one process built, a later one loads (here: this
+// process after forgetting its own builds) and it equals a fresh build; a damaged entry is built
+// again and replaced; an unwritable store costs a build, nothing else; unset, nothing is written.
+TEST(SdfBuildStore, ALaterProcessLoadsTheGridOneBuilt) {
+  const test::TempDir dir;
+  const Scene scene = load_scene("thesis:monkey:1");
+  const Mesh& mesh = scene.meshes.at(0);
+  const sdf::MeshGridParams params;
+  int builds = 0;
+  const auto grid = [&] {
+    sdf::forget_reused_builds();  // as a new process
+    return sdf::reuse_mesh_grid(mesh, params, [&] {
+      ++builds;
+      return sdf::build_mesh_distance_grid(mesh, params);
+    });
+  };
+  ::unsetenv("SDFBENCH_BUILD_STORE");
+  grid();
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+  const fs::path store = dir.path() / "store";
+  ::setenv("SDFBENCH_BUILD_STORE", store.c_str(), 1);
+  const sdf::MeshDistanceGrid built = grid();
+  EXPECT_EQ(builds, 2);
+  std::vector<fs::path> entries;
+  for (const auto& e : fs::recursive_directory_iterator(store))
+    if (e.is_regular_file()) entries.push_back(e.path());
+  ASSERT_EQ(entries.size(), 1u);
+  EXPECT_EQ(entries[0].parent_path().filename().string().size(), 40u) << "a folder named by the build ID (SHA-1)";
+
+  const sdf::MeshDistanceGrid loaded = grid();
+  EXPECT_EQ(builds, 2);
+  test::expect_same_grid(loaded, built);
+  EXPECT_EQ(loaded.build_ms, built.build_ms);
+
+  fs::resize_file(entries[0], fs::file_size(entries[0]) / 2);
+  test::expect_same_grid(grid(), built);
+  EXPECT_EQ(builds, 3);
+  grid();
+  EXPECT_EQ(builds, 3) << "the damaged entry was replaced";
+
+  sdf::MeshGridParams other = params;  // other parameters: another entry
+  other.cells_per_extent = 16;
+  sdf::forget_reused_builds();
+  sdf::reuse_mesh_grid(mesh, other, [&] {
+    ++builds;
+    return sdf::build_mesh_distance_grid(mesh, other);
+  });
+  EXPECT_EQ(builds, 4);
+
+  const fs::path blocked = dir.write("blocked", "a file where the store's folder would be");
+  ::setenv("SDFBENCH_BUILD_STORE", blocked.c_str(), 1);
+  test::expect_same_grid(grid(), built);
+  test::expect_same_grid(grid(), built);
+  EXPECT_EQ(builds, 6);
+  ::unsetenv("SDFBENCH_BUILD_STORE");
 }
 
 }  // namespace

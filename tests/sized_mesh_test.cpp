@@ -23,6 +23,11 @@ namespace fs = std::filesystem;
 
 Mesh thesis_mesh(const std::string& name) { return load_obj(builtin_mesh_path(name), name); }
 
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 // Each test process gets its own cache folder (the user's ~/.cache stays untouched).
 class SizedMesh : public ::testing::Test {
  protected:
@@ -210,7 +215,7 @@ TEST_F(SizedMesh, TableTrianglesIsTheMeshSizeAxis) {
 }
 
 // Scaled grids in every SDF backend: a mesh over 8192 triangles agrees with Embree (the Vulkan
-// kernels read far cells from the grid_cells texels), and the cache refuses scaled grids.
+// kernels read far cells from the grid_cells texels), and the cache holds scaled grids.
 TEST_F(SizedMesh, ScaledGridsRenderLikeEmbreeInEverySdfBackend) {
   for (const char* mode : {"primary", "shadow"}) {
     const test::CommandResult r = test::run_sdfbench(
@@ -228,11 +233,21 @@ TEST_F(SizedMesh, ScaledGridsRenderLikeEmbreeInEverySdfBackend) {
       test::run_sdfbench("render --scene thesis:bunny@20000:3 --backend sdf-octree --mode shadow --size 64x36 --validate --out " +
                          (dir_.path() / "v.png").string());
   EXPECT_EQ(validated.exit_code, 0) << validated.output;
-  const test::CommandResult cached =
-      test::run_sdfbench("build --scene thesis:bunny@20000:1 --cache " + (dir_.path() / "c.sdfcache").string());
-  EXPECT_EQ(cached.exit_code, 1) << cached.output;
-  EXPECT_NE(cached.output.find("are not cached yet"), std::string::npos) << cached.output;
-  EXPECT_EQ(test::run_sdfbench("build --scene thesis:bunny@20000:1 --fixed-grid --cache " + (dir_.path() / "f.sdfcache").string()).exit_code, 0);
+  // A scaled grid in the cache: the render that loads it draws the built one's image, byte for byte.
+  const std::string cache = (dir_.path() / "c.sdfcache").string();
+  const test::CommandResult cached = test::run_sdfbench("build --scene thesis:bunny@20000:1 --cache " + cache);
+  EXPECT_EQ(cached.exit_code, 0) << cached.output;
+  const std::string render = "render --scene thesis:bunny@20000:1 --backend sdf-octree --size 48x27 --frames 1 --warmup 0 --out ";
+  const test::CommandResult loaded = test::run_sdfbench(render + (dir_.path() / "loaded.png").string() + " --cache " + cache);
+  EXPECT_NE(loaded.output.find("SDF cache: loaded"), std::string::npos) << loaded.output;
+  EXPECT_EQ(test::run_sdfbench(render + (dir_.path() / "built.png").string()).exit_code, 0);
+  const std::string built = file_bytes(dir_.path() / "built.png");
+  EXPECT_FALSE(built.empty());
+  EXPECT_EQ(file_bytes(dir_.path() / "loaded.png"), built);
+  // --fixed-grid is a parameter of the cached grid: the scaled one is stale for it.
+  const test::CommandResult fixed = test::run_sdfbench(render + (dir_.path() / "fixed.png").string() + " --fixed-grid --cache " + cache);
+  EXPECT_EQ(fixed.exit_code, 1) << fixed.output;
+  EXPECT_NE(fixed.output.find("--fixed-grid"), std::string::npos) << fixed.output;
 }
 
 }  // namespace

@@ -4,11 +4,13 @@
 #include <bit>
 #include <cstring>
 #include <list>
+#include <optional>
 #include <mutex>
 #include <span>
 #include <string>
 #include <utility>
 
+#include "renderers/sdf/build_store.h"
 #include "renderers/sdf/sdf_cache.h"
 #include "util/fnv1a.h"
 
@@ -78,7 +80,22 @@ T reuse(const Key& key, const std::function<T()>& build) {
 
 MeshDistanceGrid reuse_mesh_grid(const Mesh& mesh, const MeshGridParams& params,
                                  const std::function<MeshDistanceGrid()>& build) {
-  return reuse(Key("mesh grid").add(mesh_digest(mesh)).add(params), build);
+  const Key key = Key("mesh grid").add(mesh_digest(mesh)).add(params);
+  return reuse<MeshDistanceGrid>(key, [&] {
+    // Then another process' build of the same executable (build_store.h), then a build.
+    const uint64_t id = fnv1a64(key.text());
+    if (std::optional<MeshDistanceGrid> stored = load_stored_mesh_grid(mesh, params, id)) return std::move(*stored);
+    MeshDistanceGrid grid = build();
+    store_mesh_grid(mesh, params, id, grid);
+    return grid;
+  });
+}
+
+SceneHash reuse_scene_hash(const Scene& scene, const MeshGridParams& grid, const SceneHashParams& params,
+                           const std::function<SceneHash()>& build) {
+  return reuse(Key("scene hash").add(scene_geometry_hash(scene)).add(grid).add(params.hash_cell).add(params.octree_depth)
+                   .add(params.octree_min_objects).add(params.octree_min_size).add(params.lists).add(params.max_bytes),
+               build);
 }
 
 BrickField reuse_brick_field(const Mesh& mesh, const MeshGridParams& grid, const BrickFieldParams& params,

@@ -344,7 +344,7 @@ SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, 
   SceneSdf sdf;
   for (const Mesh& mesh : scene.meshes)
     sdf.mesh_grids.push_back(reuse_mesh_grid(mesh, mesh_params, [&] { return build_mesh_distance_grid(mesh, mesh_params); }));
-  sdf.hash = build_scene_hash(scene, sdf.mesh_grids, hash_params);
+  sdf.hash = reuse_scene_hash(scene, mesh_params, hash_params, [&] { return build_scene_hash(scene, sdf.mesh_grids, hash_params); });
   for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
   for (const StructureRequest& extra : extras) add_structure(sdf, scene, mesh_params, extra);
   return sdf;

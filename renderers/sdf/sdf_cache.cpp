@@ -37,7 +37,8 @@ uint64_t hash_value(uint64_t h, const T& value) {
 std::string describe(const MeshGridParams& m) {
   std::ostringstream s;
   s << "--mesh-cell " << m.cell_size << " --cells-per-extent " << m.cells_per_extent << " margin " << m.margin_cells
-    << " rule " << (m.rule == MeshGridRule::tight ? "tight" : "sphere") << " subdivision " << m.subdivision;
+    << " rule " << (m.rule == MeshGridRule::tight ? "tight" : "sphere") << " subdivision " << m.subdivision
+    << (m.scale_with_triangles ? "" : " --fixed-grid");
   return s.str();
 }
 
@@ -51,7 +52,7 @@ std::string describe(const SceneHashParams& p) {
 
 bool same(const MeshGridParams& a, const MeshGridParams& b) {
   return a.cell_size == b.cell_size && a.cells_per_extent == b.cells_per_extent && a.margin_cells == b.margin_cells &&
-         a.rule == b.rule && a.subdivision == b.subdivision;
+         a.rule == b.rule && a.subdivision == b.subdivision && a.scale_with_triangles == b.scale_with_triangles;
 }
 
 bool same(const SceneHashParams& a, const SceneHashParams& b) {
@@ -78,22 +79,8 @@ uint64_t scene_geometry_hash(const Scene& scene) {
   return h;
 }
 
-namespace {
-
-// The mesh grid codec has no section for far cells (mesh_distance_grid.h): scaled grids are not cached yet.
-void check_cacheable(const fs::path& path, const Scene& scene, const MeshGridParams& mesh_params) {
-  for (const Mesh& mesh : scene.meshes)
-    if (has_far_cells(mesh_params, mesh.triangles.size()))
-      throw Error("SDF cache '" + path.string() + "': mesh '" + mesh.name + "' has " + std::to_string(mesh.triangles.size()) +
-                  " triangles, and grids scaled for meshes over " + std::to_string(kScaledGridFromTriangles) +
-                  " triangles are not cached yet; drop --cache (or pass --fixed-grid)");
-}
-
-}  // namespace
-
 bool write_sdf_cache(const fs::path& path, const Scene& scene, const SceneSdf& sdf, const MeshGridParams& mesh_params,
                      bool warn_if_unwritable) {
-  check_cacheable(path, scene, mesh_params);
   SdfCacheContents c;
   c.scene_hash = scene_geometry_hash(scene);
   c.instance_count = static_cast<uint32_t>(scene.instances.size());
@@ -138,7 +125,6 @@ struct CachedSdf {
 CachedSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path, const Scene& scene,
                          const MeshGridParams& mesh_params, const SceneHashParams& hash_params, const StructureRequests& extras,
                          bool complete) {
-  check_cacheable(path, scene, mesh_params);
   SdfCacheContents c = decode_sdf_cache(bytes, path.string());
   const std::string stale = "SDF cache '" + path.string() + "' is stale: ";
   if (c.scene_hash != scene_geometry_hash(scene))
@@ -159,9 +145,10 @@ CachedSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path,
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const MeshGridLayout layout = mesh_grid_layout(scene.meshes[m], mesh_params);
     const MeshDistanceGrid& grid = c.sdf.mesh_grids[m];
-    if (grid.cell_size != layout.cell_size || grid.dims != layout.dims || grid.origin != layout.origin)
-      throw Error(resealed + "mesh '" + scene.meshes[m].name + "''s grid has another cell size, origin or size than the mesh's "
-                  "bounds and " + describe(mesh_params) + " give (a cache edited and resealed?)");
+    if (grid.cell_size != layout.cell_size || grid.dims != layout.dims || grid.origin != layout.origin ||
+        grid.far_distance.empty() == has_far_cells(mesh_params, scene.meshes[m].triangles.size()))
+      throw Error(resealed + "mesh '" + scene.meshes[m].name + "''s grid has another cell size, origin, size or far-cell layout than "
+                  "the mesh's bounds and " + describe(mesh_params) + " give (a cache edited and resealed?)");
   }
   if (c.sdf.global_params && !scene.instances.empty() &&
       c.sdf.global_field.field.voxel != global_field_voxel(scene, *c.sdf.global_params))

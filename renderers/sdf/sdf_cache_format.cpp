@@ -150,8 +150,9 @@ class SectionTable {
   }
 
   void check_overlaps() const {
-    std::vector<const SectionEntry*> by_offset;
-    for (const SectionEntry& e : entries_) by_offset.push_back(&e);
+    std::vector<const SectionEntry*> by_offset;  // empty sections hold no bytes to overlap (a grid without far cells)
+    for (const SectionEntry& e : entries_)
+      if (e.count != 0) by_offset.push_back(&e);
     std::sort(by_offset.begin(), by_offset.end(), [](auto a, auto b) { return a->offset < b->offset; });
     const std::vector<SdfCacheSection> names = describe();
     auto name_of = [&](const SectionEntry* e) { return names[static_cast<size_t>(e - entries_.data())].name; };

@@ -1,6 +1,7 @@
 // The mesh distance grids in the cache: their build parameters, then per mesh a grid header
-// (origin, cell size, dims, triangle/vertex counts, build ms), cell_begin, cell_triangles and
-// face/edge/vertex pseudo-normals.
+// (origin, cell size, dims, triangle/vertex counts, build ms), cell_begin, cell_triangles,
+// face/edge/vertex pseudo-normals and, for a scaled grid (a mesh over kScaledGridFromTriangles),
+// its far cells' bounds (version 2; version 1 held no scaled grids).
 #include <algorithm>
 #include <cstdio>
 
@@ -19,7 +20,7 @@ struct ParamsRecord {
   float cell_size;
   uint32_t cells_per_extent;
   float margin_cells;
-  uint32_t rule, subdivision, reserved;
+  uint32_t rule, subdivision, scale_with_triangles;
 };
 struct GridHeader {
   glm::vec3 origin;
@@ -29,11 +30,14 @@ struct GridHeader {
   double build_ms;
 };
 static_assert(sizeof(ParamsRecord) == 24 && sizeof(GridHeader) == 48);
-enum Section : uint32_t { kParams, kGridHeader, kCellBegin, kCellTriangles, kFaceNormals, kEdgeNormals, kVertexNormals };
+enum Section : uint32_t {
+  kParams, kGridHeader, kCellBegin, kCellTriangles, kFaceNormals, kEdgeNormals, kVertexNormals, kFarDistance, kFarUpper
+};
 
 void encode(const SdfCacheContents& c, SectionWriter& out) {
   const MeshGridParams& p = c.mesh_params;
-  out.add_one(kParams, 0, ParamsRecord{p.cell_size, p.cells_per_extent, p.margin_cells, static_cast<uint32_t>(p.rule), p.subdivision, 0});
+  out.add_one(kParams, 0, ParamsRecord{p.cell_size, p.cells_per_extent, p.margin_cells, static_cast<uint32_t>(p.rule), p.subdivision,
+                                      p.scale_with_triangles ? 1u : 0u});
   for (uint32_t m = 0; m < c.sdf.mesh_grids.size(); ++m) {
     const MeshDistanceGrid& g = c.sdf.mesh_grids[m];
     out.add_one(kGridHeader, m, GridHeader{g.origin, g.cell_size, g.dims, c.mesh_triangles.at(m), c.mesh_vertices.at(m), 0, g.build_ms});
@@ -42,6 +46,8 @@ void encode(const SdfCacheContents& c, SectionWriter& out) {
     out.add(kFaceNormals, m, g.face_normals);
     out.add(kEdgeNormals, m, g.edge_normals);
     out.add(kVertexNormals, m, g.vertex_normals);
+    out.add(kFarDistance, m, g.far_distance);
+    out.add(kFarUpper, m, g.far_upper);
   }
 }
 
@@ -53,7 +59,10 @@ MeshGridParams read_params(const SectionReader& in) {
   in.require(r.cells_per_extent >= 1 && r.cells_per_extent <= 4096, "cells-per-extent parameter");
   in.require(std::isfinite(r.margin_cells) && r.margin_cells >= 0.0f, "mesh margin parameter");
   in.require(r.subdivision >= 1 && r.subdivision <= 8, "mesh grid subdivision parameter");
-  return {r.cell_size, r.cells_per_extent, r.margin_cells, static_cast<MeshGridRule>(r.rule), r.subdivision};
+  in.require(r.scale_with_triangles <= 1, "mesh grid scale parameter");
+  MeshGridParams p{r.cell_size, r.cells_per_extent, r.margin_cells, static_cast<MeshGridRule>(r.rule), r.subdivision};
+  p.scale_with_triangles = r.scale_with_triangles == 1;
+  return p;
 }
 
 MeshDistanceGrid read_grid(const SectionReader& in, uint32_t mesh, uint32_t& triangles, uint32_t& vertices) {
@@ -84,6 +93,20 @@ MeshDistanceGrid read_grid(const SectionReader& in, uint32_t mesh, uint32_t& tri
              what + ": pseudo-normal counts do not match its triangles and vertices");
   in.require(all_finite(g.face_normals) && all_finite(g.edge_normals) && all_finite(g.vertex_normals),
              what + ": non-finite pseudo-normal");
+  // Far cells: none, or a bound per cell (0: a listed cell); a far cell lists nothing, and its
+  // upper bound is finite and not below its bound's magnitude (the scene hash's lists rely on it).
+  g.far_distance = in.section<float>(kFarDistance, mesh);
+  g.far_upper = in.section<float>(kFarUpper, mesh);
+  in.require((g.far_distance.empty() || g.far_distance.size() == cell_product(h.dims)) &&
+                 g.far_upper.size() == g.far_distance.size(),
+             what + ": far-cell bounds for " + std::to_string(g.far_distance.size()) + " of " +
+                 std::to_string(cell_product(h.dims)) + " cells");
+  for (size_t cell = 0; cell < g.far_distance.size(); ++cell) {
+    const float d = g.far_distance[cell], u = g.far_upper[cell];
+    in.require(std::isfinite(d) && std::isfinite(u), what + ": a non-finite far-cell bound");
+    in.require(d == 0.0f || (g.cell_begin[cell] == g.cell_begin[cell + 1] && u >= std::abs(d)),
+               what + ": far cell " + std::to_string(cell) + " has a list, or an upper bound below its bound");
+  }
   triangles = h.triangles;
   vertices = h.vertices;
   return g;
@@ -118,10 +141,11 @@ std::vector<std::string> summary(const SdfCacheContents& c) {
 
 const SectionCodec& mesh_grid_codec() {
   static const SectionCodec codec{
-      .kind = 1, .name = "mesh grids", .version = 1,
+      .kind = 1, .name = "mesh grids", .version = 2,
       .sections = {{"mesh grid params", sizeof(ParamsRecord), false}, {"grid header", sizeof(GridHeader), true},
                    {"cell_begin", 4, true}, {"cell_triangles", 4, true}, {"face normals", 12, true},
-                   {"edge normals", 12, true}, {"vertex normals", 12, true}},
+                   {"edge normals", 12, true}, {"vertex normals", 12, true}, {"far distance", 4, true},
+                   {"far upper", 4, true}},
       .the_name = "the mesh grids", .encode = encode, .decode = decode, .summary = summary,
   };
   return codec;
