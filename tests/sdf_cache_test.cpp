@@ -81,6 +81,13 @@ std::vector<size_t> entries_named(const sdf::SdfCacheContents& contents, const s
   return out;
 }
 
+// The section of `contents` called `name` ("mesh 0 cell_triangles").
+sdf::SdfCacheSection section_named(const sdf::SdfCacheContents& contents, const std::string& name) {
+  for (const sdf::SdfCacheSection& s : contents.sections)
+    if (s.name == name) return s;
+  throw std::logic_error("no section " + name);
+}
+
 // The table position of every section of codec `kind` in a cache file.
 std::vector<size_t> entries_of_kind(const Bytes& bytes, uint32_t kind) {
   std::vector<size_t> out;
@@ -216,11 +223,7 @@ TEST_F(SdfCacheTest, RandomBytesAreRefused) {
 TEST_F(SdfCacheTest, ResealedHostileFilesAreRefused) {
   const Bytes valid = read_all(write_valid());
   const sdf::SdfCacheContents c = sdf::decode_sdf_cache(valid, "valid");
-  auto section = [&](const std::string& name) {
-    for (const sdf::SdfCacheSection& s : c.sections)
-      if (s.name == name) return s;
-    throw std::logic_error("no section " + name);
-  };
+  auto section = [&](const std::string& name) { return section_named(c, name); };
   struct Case {
     std::string name, expected;
     std::function<void(Bytes&)> mutate;
@@ -325,11 +328,7 @@ TEST_F(SdfCacheTest, ScaledGridsRoundTripAndLyingFarCellsAreRefused) {
 
   const Bytes valid = read_all(path);
   const sdf::SdfCacheContents c = sdf::decode_sdf_cache(valid, "valid");
-  auto section = [&](const std::string& name) {
-    for (const sdf::SdfCacheSection& s : c.sections)
-      if (s.name == name) return s;
-    throw std::logic_error("no section " + name);
-  };
+  auto section = [&](const std::string& name) { return section_named(c, name); };
   const sdf::MeshDistanceGrid& g = built.mesh_grids[0];
   size_t far = 0, listed = 0;
   while (!g.is_far(far)) ++far;
@@ -404,11 +403,7 @@ TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
       Error);
   const Bytes valid = read_all(path);
   const sdf::SdfCacheContents c = sdf::decode_sdf_cache(valid, "valid");
-  auto section = [&](const std::string& name) {
-    for (const sdf::SdfCacheSection& s : c.sections)
-      if (s.name == name) return s;
-    throw std::logic_error("no section " + name);
-  };
+  auto section = [&](const std::string& name) { return section_named(c, name); };
   const struct {
     const char* name;
     const char* expected;
@@ -666,11 +661,7 @@ TEST_F(SdfCacheTest, HostileGlobalFieldsAreRefused) {
     std::memcpy(edge.sdf.global_field.field.atlas.data(), &beyond, sizeof beyond);
     EXPECT_THROW(sdf::decode_sdf_cache(sdf::encode_sdf_cache(edge), "beyond"), Error);
   }
-  auto section = [&](const std::string& name) {
-    for (const sdf::SdfCacheSection& s : c.sections)
-      if (s.name == name) return s;
-    throw std::logic_error("no section " + name);
-  };
+  auto section = [&](const std::string& name) { return section_named(c, name); };
   const auto first_stored = [&](const Bytes& b) -> uint64_t {
     const auto s = section("global indirection");
     for (uint64_t i = 0; i < s.count; ++i)

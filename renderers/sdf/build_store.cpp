@@ -39,7 +39,8 @@ std::optional<MeshDistanceGrid> load_stored_mesh_grid(const Mesh& mesh, const Me
   std::error_code ec;
   if (!path || !fs::is_regular_file(*path, ec)) return std::nullopt;
   try {
-    SceneSdf stored = load_sdf_cache(*path, mesh_scene(mesh), params, SceneHashParams{});
+    const Scene scene = mesh_scene(mesh);
+    SceneSdf stored = load_sdf_cache(*path, scene, params, one_cell_hash(scene));
     return std::move(stored.mesh_grids.at(0));
   } catch (const Error&) {
     return std::nullopt;  // a damaged or stale entry: built again, and replaced
@@ -54,7 +55,7 @@ void store_mesh_grid(const Mesh& mesh, const MeshGridParams& params, uint64_t ke
     const Scene scene = mesh_scene(mesh);
     SceneSdf sdf;
     sdf.mesh_grids.push_back(grid);
-    sdf.hash = build_scene_hash(scene, sdf.mesh_grids, SceneHashParams{});  // one instance: one cell
+    sdf.hash = build_scene_hash(scene, sdf.mesh_grids, one_cell_hash(scene));
     write_sdf_cache(*path, scene, sdf, params);
   } catch (const std::exception&) {
     // Unwritable folder, full disk: the next process builds the grid again.

@@ -321,6 +321,17 @@ SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGri
   return hash;
 }
 
+SceneHashParams one_cell_hash(const Scene& scene, uint64_t max_bytes) {
+  const Aabb bounds = scene.instance_bounds();
+  const glm::vec3 extent = bounds.empty() ? glm::vec3(0.0f) : bounds.extent();
+  SceneHashParams p;
+  p.hash_cell = std::max(1.0f, 1.001f * std::max(extent.x, std::max(extent.y, extent.z)));
+  p.octree_depth = 0;
+  p.lists = ListRule::Thesis;
+  p.max_bytes = max_bytes;
+  return p;
+}
+
 double build_ms(const SceneSdf& sdf) {
   double ms = sdf.hash.build_ms;
   for (const MeshDistanceGrid& g : sdf.mesh_grids) ms += g.build_ms;

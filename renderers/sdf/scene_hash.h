@@ -78,6 +78,10 @@ void validate(const SceneHashParams& params);  // throws Error for non-positive 
 // The hash grid's cells per axis over the scene's instances; throws Error (with the real counts)
 // beyond kMaxHashCells. Cheap: callers check it before the mesh grids are built.
 glm::uvec3 scene_hash_dims(const Scene& scene, const SceneHashParams& params);
+// One cell over all of the scene's instances, no octree, the cheap list rule: the hash of a
+// structure that reads none (sdf-global; the build store's one-mesh caches), which costs next to
+// nothing to build and to store at any scale.
+SceneHashParams one_cell_hash(const Scene& scene, uint64_t max_bytes = kDefaultMaxStructureBytes);
 // Throws Error when the scene hash, or its octrees as they grow, would pass the limits above
 // (naming the flags to change); long builds print progress on stderr (util/progress.h).
 SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGrid>& grids, const SceneHashParams& params);

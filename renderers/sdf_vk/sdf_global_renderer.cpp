@@ -31,19 +31,6 @@ std::vector<uint32_t> headed_table(const std::vector<uint32_t>& heads, const std
   return words;
 }
 
-// sdf-global reads no scene hash: one cell over the scene, no octree, the cheap list rule (the
-// shared structure cache still holds a hash; this one costs next to nothing to build).
-sdf::SceneHashParams one_cell_hash(const Scene& scene, uint64_t max_bytes) {
-  const Aabb bounds = scene.instance_bounds();
-  const glm::vec3 extent = bounds.empty() ? glm::vec3(0.0f) : bounds.extent();
-  sdf::SceneHashParams p;
-  p.hash_cell = std::max(1.0f, 1.001f * std::max(extent.x, std::max(extent.y, extent.z)));
-  p.octree_depth = 0;
-  p.lists = sdf::ListRule::Thesis;
-  p.max_bytes = max_bytes;
-  return p;
-}
-
 std::string kernel_defines(const BackendOptions& options, bool sampler) {
   std::ostringstream defines;
   defines << brick_kernel_defines(options, sampler);
@@ -87,7 +74,7 @@ void SdfGlobalRenderer::prepare(const Scene& scene) {
       tracing_.hit == sdf::HitMode::exact && options_.params.text("exact_lists") == "triangles";
   {  // the CPU structures are freed once flattened
     const sdf::SceneSdf sdf =
-        sdf::obtain_scene_sdf(scene, sdf::mesh_grid_params(options_.params), one_cell_hash(scene, field_params_.max_bytes),
+        sdf::obtain_scene_sdf(scene, sdf::mesh_grid_params(options_.params), sdf::one_cell_hash(scene, field_params_.max_bytes),
                               options_.cache, std::cerr, {field_params_});
     // What the kernel reads: the mesh grids (exact hits) and the global field with its lists.
     double ms = sdf.global_field.build_ms;
