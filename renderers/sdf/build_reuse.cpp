@@ -32,6 +32,9 @@ class Key {
     return add(p.cell_size).add(p.cells_per_extent).add(p.margin_cells).add(p.rule).add(p.subdivision).add(p.max_bytes)
         .add(p.scale_with_triangles);
   }
+  Key& add(const SceneHashParams& p) {
+    return add(p.hash_cell).add(p.octree_depth).add(p.octree_min_objects).add(p.octree_min_size).add(p.lists).add(p.max_bytes);
+  }
   const std::string& text() const { return text_; }
 
  private:
@@ -93,9 +96,7 @@ MeshDistanceGrid reuse_mesh_grid(const Mesh& mesh, const MeshGridParams& params,
 
 SceneHash reuse_scene_hash(const Scene& scene, const MeshGridParams& grid, const SceneHashParams& params,
                            const std::function<SceneHash()>& build) {
-  return reuse(Key("scene hash").add(scene_geometry_hash(scene)).add(grid).add(params.hash_cell).add(params.octree_depth)
-                   .add(params.octree_min_objects).add(params.octree_min_size).add(params.lists).add(params.max_bytes),
-               build);
+  return reuse(Key("scene hash").add(scene_geometry_hash(scene)).add(grid).add(params), build);
 }
 
 BrickField reuse_brick_field(const Mesh& mesh, const MeshGridParams& grid, const BrickFieldParams& params,

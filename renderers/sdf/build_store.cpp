@@ -15,8 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The entry's file, or none when the store is off or cannot hold this grid.
-std::optional<fs::path> entry_path(const Mesh& mesh, const MeshGridParams& params, uint64_t key) {
+// The entry's file, or none when the store is off (or the executable has no build ID).
+std::optional<fs::path> entry_path(uint64_t key) {
   const char* dir = std::getenv("SDFBENCH_BUILD_STORE");
   if (!dir || !*dir || executable_build_id().empty()) return std::nullopt;
   char name[32];
@@ -35,7 +35,7 @@ Scene mesh_scene(const Mesh& mesh) {
 }  // namespace
 
 std::optional<MeshDistanceGrid> load_stored_mesh_grid(const Mesh& mesh, const MeshGridParams& params, uint64_t key) {
-  const std::optional<fs::path> path = entry_path(mesh, params, key);
+  const std::optional<fs::path> path = entry_path(key);
   std::error_code ec;
   if (!path || !fs::is_regular_file(*path, ec)) return std::nullopt;
   try {
@@ -48,7 +48,7 @@ std::optional<MeshDistanceGrid> load_stored_mesh_grid(const Mesh& mesh, const Me
 }
 
 void store_mesh_grid(const Mesh& mesh, const MeshGridParams& params, uint64_t key, const MeshDistanceGrid& grid) {
-  const std::optional<fs::path> path = entry_path(mesh, params, key);
+  const std::optional<fs::path> path = entry_path(key);
   if (!path) return;
   try {
     fs::create_directories(path->parent_path());
