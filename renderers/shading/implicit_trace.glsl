@@ -43,6 +43,10 @@ vec3 implicit_object_point(GpuImplicitObject o, vec3 p) {
 // object distance times the scale is a world step. Marching starts at the exact entry into the
 // object's box and stops at its exit; a ray starting inside the shape (refraction) marches on
 // the negated distance to the surface it leaves through.
+//
+// implicit_distance has one call site here and one in implicit_surface: the driver inlines every
+// call, each a copy of the CSG interpreter and its stacks, and lavapipe's compile time grows with
+// them (11 sites made a whitted kernel with implicit objects take ~20 s to compile).
 float implicit_march(GpuImplicitObject o, Ray ray, float tmax) {
   vec3 origin = implicit_object_point(o, ray.origin);
   vec3 dir = vec3(dot(vec3(o.to_object0), ray.dir), dot(vec3(o.to_object1), ray.dir), dot(vec3(o.to_object2), ray.dir));
@@ -55,29 +59,39 @@ float implicit_march(GpuImplicitObject o, Ray ray, float tmax) {
   float leave = min(min(hi.x, hi.y), min(hi.z, tmax));
   if (t > leave) return -1.0f;
   float scale = o.bounds_max.w;
+  float side = 1.0f;  // the sign of the first distance: -1 for a ray that starts inside
   uint prim;
-  float dist = implicit_distance(o.info.x, o.info.y, origin + t * dir, prim) * scale;
-  float side = dist < 0.0f ? -1.0f : 1.0f;
   for (uint step = 0u; step < IMPLICIT_MAX_STEPS; ++step) {
+    float dist = implicit_distance(o.info.x, o.info.y, origin + t * dir, prim) * scale;
+    if (step == 0u && dist < 0.0f) side = -1.0f;
     dist *= side;
     if (dist < frame.tracing.w) return t;
     t += dist;
     if (t > leave) return -1.0f;
-    dist = implicit_distance(o.info.x, o.info.y, origin + t * dir, prim) * scale;
   }
   return -1.0f;
 }
 
-// Thesis Algorithm 3.3: the normal is the SDF's central-difference gradient, turned to world.
-vec3 implicit_normal(GpuImplicitObject o, vec3 p, vec3 ray_dir) {
+// At object-space point p on the surface: the normal (thesis Algorithm 3.3: the SDF's
+// central-difference gradient, turned to world) and the node of the primitive that decides the
+// distance there. Seven distances, from one call site (see implicit_march): k < 6 the gradient's
+// +h and -h samples on axis k / 2, k = 6 the point itself.
+vec3 implicit_surface(GpuImplicitObject o, vec3 p, vec3 ray_dir, OUT(uint) prim) {
   float h = o.bounds_min.w;
-  uint first = o.info.x, count = o.info.y, prim;
-  vec3 g = vec3(implicit_distance(first, count, p + vec3(h, 0.0f, 0.0f), prim) -
-                    implicit_distance(first, count, p - vec3(h, 0.0f, 0.0f), prim),
-                implicit_distance(first, count, p + vec3(0.0f, h, 0.0f), prim) -
-                    implicit_distance(first, count, p - vec3(0.0f, h, 0.0f), prim),
-                implicit_distance(first, count, p + vec3(0.0f, 0.0f, h), prim) -
-                    implicit_distance(first, count, p - vec3(0.0f, 0.0f, h), prim));
+  vec3 g = vec3(0.0f);
+  prim = 0u;
+  for (uint k = 0u; k < 7u; ++k) {
+    uint axis = min(k >> 1u, 2u), owner;
+    float offset = (k & 1u) == 0u ? h : -h;
+    vec3 q = p;
+    if (k < 6u) q[axis] += offset;
+    float d = implicit_distance(o.info.x, o.info.y, q, owner);
+    if (k < 6u) {
+      g[axis] += (k & 1u) == 0u ? d : -d;
+    } else {
+      prim = owner;
+    }
+  }
   vec3 n = vec3(dot(vec3(o.to_world0), g), dot(vec3(o.to_world1), g), dot(vec3(o.to_world2), g));
   return dot(n, n) > 0.0f ? normalize(n) : -ray_dir;  // a flat gradient (a symmetry point) faces the ray
 }
@@ -97,13 +111,12 @@ bool implicit_closest(Ray ray, float tmax, INOUT(Hit) hit) {
   GpuImplicitObject o = implicit_objects[best];
   vec3 p = implicit_object_point(o, ray.origin + tmax * ray.dir);
   uint prim;
-  implicit_distance(o.info.x, o.info.y, p, prim);
+  hit.normal = implicit_surface(o, p, ray.dir, prim);
   GpuImplicitNode n = implicit_nodes[o.info.x + prim];
   hit.t = tmax;
   hit.instance = o.info.w;
   hit.prim = prim;
   hit.material = o.info.z;
-  hit.normal = implicit_normal(o, p, ray.dir);
   hit.uv = implicit_primitive_uv(n.info.x, n.a, n.b, implicit_to_local(n, p));
   return true;
 }
