@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # harness/scripts/gpu_run.sh end to end on lavapipe at a tiny size (issue 17): the device folder,
 # every compare agreeing, the tables' rows, and one-line errors for bad flags and devices.
-# Usage: tests/gpu_run_test.sh SDFBENCH_BINARY [run|sweeps|reruns] (three ctest tests, each under a minute)
+# Usage: tests/gpu_run_test.sh SDFBENCH_BINARY [run|storage|fetch|reruns] (four ctest tests, each under a minute)
 set -euo pipefail
 binary=$(realpath "$1")
-part=${2:-run}  # run: the compares and a table; sweeps: the sweeps; reruns: --tables-only, the report, resume, retries, errors
+part=${2:-run}  # run: the compares and a table; storage, fetch: one sweep each; reruns: --tables-only, the report, resume, retries, errors
 root=$(cd "$(dirname "$0")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -13,7 +13,7 @@ script=$root/harness/scripts/gpu_run.sh
 
 if [[ $part == run ]]; then
 # The compares (one mesh's primary and shadow, and the two whitted scenes: the other meshes run the
-# same loop) and a table of one object count: --steps leaves out the sweeps (the sweeps part).
+# same loop) and a table of one object count: --steps leaves out the sweeps (the storage and fetch parts).
 "$script" --binary "$binary" --device lavapipe --size 32x18 --compare-size 32x18 --compare-objects 3 --compare-meshes sphere \
   --budget-s 1 --frames 1 --steps compares,tables --out "$work/out" -- --table 6.3 --meshes sphere --objects 1 --check-size 32x18 \
   >"$work/log" 2>&1 || { tail -20 "$work/log"; fail "gpu_run.sh on lavapipe exited $?"; }
@@ -35,27 +35,34 @@ grep -q -- "--device lavapipe" "$dir/tables_command.txt" || fail "tables_command
   exit 0
 fi
 
-if [[ $part == sweeps ]]; then
-# The sweeps alone (--steps sweeps): no compares, no tables, the report of the sweeps' CSVs.
-"$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --steps sweeps \
-  --storage-scene thesis:sphere:3 --out "$work/out" >"$work/log" 2>&1 || { tail -20 "$work/log"; fail "gpu_run.sh --steps sweeps exited $?"; }
+if [[ $part == storage || $part == fetch ]]; then
+# One sweep step alone (--steps storage or fetch; two tests, so that each compiles half the sweeps'
+# kernels): no compares, no tables, no other sweep, the report of the sweep's CSV.
+"$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --steps "$part" \
+  --storage-scene thesis:sphere:3 --out "$work/out" >"$work/log" 2>&1 || { tail -20 "$work/log"; fail "gpu_run.sh --steps $part exited $?"; }
 dir=$(echo "$work"/out/llvmpipe-*)
-[[ ! -e $dir/agreement.txt && ! -e $dir/tables.csv && ! -e $dir/info.txt ]] || fail "--steps sweeps ran more: $(ls "$dir")"
-# Texel vs storage buffers: 2 backends x 2 modes x both, every row agreeing.
-[[ -s $dir/storage_vs_texel.md ]] || fail "storage_vs_texel.md missing or empty"
-svt_rows=$(($(wc -l <"$dir/storage_vs_texel.csv") - 1))
-[[ $svt_rows -eq 8 ]] || fail "storage_vs_texel.csv has $svt_rows rows, expected 8"
-[[ $(grep -c ',ok,' "$dir/storage_vs_texel.csv") -eq 8 ]] || fail "not every storage_vs_texel row agrees"
-# The sampled fields' fetch paths: sdf-bricks and sdf-global x 2 modes x texel and sampler, every row agreeing.
-bf_rows=$(($(wc -l <"$dir/brick_fetch.csv") - 1))
-[[ $bf_rows -eq 8 ]] || fail "brick_fetch.csv has $bf_rows rows, expected 8"
-[[ $(grep -c ',ok,' "$dir/brick_fetch.csv") -eq 8 ]] || fail "not every brick_fetch row agrees"
-grep -q "brick_fetch=sampler" "$dir/brick_fetch.csv" || fail "brick_fetch.csv has no sampler row"
-[[ $(grep -o '<tr id="f[01]r[0-9]*"' "$dir/report.html" | wc -l) -eq 16 ]] || fail "report.html does not show the sweeps' 16 rows"
+[[ ! -e $dir/agreement.txt && ! -e $dir/tables.csv && ! -e $dir/info.txt ]] || fail "--steps $part ran more: $(ls "$dir")"
+if [[ $part == storage ]]; then
+  # Texel vs storage buffers: 2 backends x 2 modes x both, every row agreeing.
+  csv=$dir/storage_vs_texel.csv other=brick_fetch.csv
+  column=$(head -1 "$csv" | tr ',' '\n' | grep -nx storage_tables | cut -d: -f1)
+  [[ -n $column && $(awk -F, -v c="$column" 'NR > 1 && $c == 1' "$csv" | wc -l) -eq 4 ]] ||
+    fail "storage_vs_texel.csv does not hold 4 storage-buffer rows (storage_tables=1)"
+else
+  # The sampled fields' fetch paths: sdf-bricks and sdf-global x 2 modes x texel and sampler, every row agreeing.
+  csv=$dir/brick_fetch.csv other=storage_vs_texel.csv
+  grep -q "brick_fetch=sampler" "$csv" || fail "brick_fetch.csv has no sampler row"
+fi
+[[ -s ${csv%.csv}.md ]] || fail "${csv%.csv}.md missing or empty"
+[[ ! -e $dir/$other ]] || fail "--steps $part ran the other sweep ($other)"
+rows=$(($(wc -l <"$csv") - 1))
+[[ $rows -eq 8 ]] || fail "$(basename "$csv") has $rows rows, expected 8"
+[[ $(grep -c ',ok,' "$csv") -eq 8 ]] || fail "not every $(basename "$csv") row agrees"
+[[ $(grep -o '<tr id="f0r[0-9]*"' "$dir/report.html" | wc -l) -eq 8 ]] || fail "report.html does not show the sweep's 8 rows"
 done_line=$(grep "gpu_run: done:" "$work/log")
-[[ $done_line == *storage_vs_texel.csv*brick_fetch.csv*report.html* && $done_line != *agreement* && $done_line != *tables.csv* ]] ||
+[[ $done_line == *"$(basename "$csv")"*report.html* && $done_line != *"$other"* && $done_line != *agreement* && $done_line != *tables.csv* ]] ||
   fail "the done line: $done_line"
-  echo "gpu_run.sh test (sweeps): all passed"
+  echo "gpu_run.sh test ($part): all passed"
   exit 0
 fi
 
@@ -117,6 +124,7 @@ expect_error "--compare-objects takes a whole number" --compare-objects 0
 expect_error "--compare-meshes takes mesh names" --compare-meshes 'bunny;rm'
 expect_error "--compare-meshes takes mesh names" --compare-meshes ''
 expect_error "--budget-s takes seconds" --budget-s -1
-expect_error "--steps takes compares, sweeps and tables" --steps compares,plots
+expect_error "--steps takes compares, storage, fetch and tables" --steps compares,plots
+expect_error "--steps takes compares, storage, fetch and tables" --steps sweeps
 [[ ! -e $work/bad ]] || fail "a refused run created its output folder"
 echo "gpu_run.sh test (reruns): all passed"

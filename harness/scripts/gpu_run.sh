@@ -8,16 +8,17 @@
 #   harness/scripts/gpu_run.sh [--device gpu] [--size 1280x720] [--compare-size 640x360]
 #       [--budget-s 2] [--frames 3] [--minutes 8] [--out results] [--binary build/sdfbench]
 #       [--storage-scene thesis:bunny:1000] [--compare-objects 100] [--compare-meshes LIST]
-#       [--steps compares,sweeps,tables | --tables-only] [-- TABLE_FLAGS...]
+#       [--steps compares,storage,fetch,tables | --tables-only] [-- TABLE_FLAGS...]
 #       (TABLE_FLAGS, e.g. -- --table 6.3 --objects 1,10: passed to `sdfbench table`)
 #
-# --steps: which parts run (default all three, in this order; the device's info.txt goes with the
+# --steps: which parts run (default all four, in this order; the device's info.txt goes with the
 # compares); --tables-only is --steps tables. The report is written of the CSVs the folder holds.
-# Between the compares and the tables: the SDF tables in texel buffers against storage buffers
-# (`sweep --storage-tables 0,1`, sdf-octree and sdf-hash, primary and shadow, on --storage-scene
-# at --size), side by side in storage_vs_texel.csv/.md (lavapipe: texel buffers; a GPU may differ);
-# and sdf-bricks' two fetch paths (`--brick-fetch texel,sampler`: texel buffers with the kernel's
-# trilinear against the sampler's filtered 3D image), primary and shadow, in brick_fetch.csv/.md.
+# Between the compares and the tables, two sweeps: storage, the SDF tables in texel buffers
+# against storage buffers (`sweep --storage-tables 0,1`, sdf-octree and sdf-hash, primary and
+# shadow, on --storage-scene at --size), side by side in storage_vs_texel.csv/.md (lavapipe: texel
+# buffers; a GPU may differ); and fetch, the sampled fields' two fetch paths (`--brick-fetch
+# texel,sampler`: texel buffers with the kernel's trilinear against the sampler's filtered 3D
+# image; sdf-bricks and sdf-global), primary and shadow, in brick_fetch.csv/.md.
 #
 # --compare-objects N: the thesis meshes' object count in the compares (thesis:<mesh>:N);
 # --compare-meshes: which meshes (default bunny,teapot,monkey,sphere; any name a thesis: spec takes).
@@ -36,7 +37,7 @@ device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=re
 compare_objects=100 compare_meshes=bunny,teapot,monkey,sphere
 binary=${SDFBENCH:-build/sdfbench}
 [[ -n ${SDFBENCH:-} || -x $binary || ! -x sdfbench ]] || binary=./sdfbench
-table_flags=() steps=compares,sweeps,tables failed=0
+table_flags=() steps=compares,storage,fetch,tables failed=0
 die() { echo "gpu_run.sh: error: $*" >&2; exit 1; }
 from_caller() { if [[ $1 == /* ]]; then echo "$1"; else echo "$caller_dir/$1"; fi; }
 while [[ $# -gt 0 ]]; do
@@ -52,13 +53,13 @@ while [[ $# -gt 0 ]]; do
       shift 2 ;;
     --tables-only) steps=tables; shift ;;
     --) shift; table_flags=("$@"); break ;;
-    -h|--help) sed -n 2,31p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,32p "$0"; exit 0 ;;
     *) die "unknown argument '$1' (see --help)" ;;
   esac
 done
 # Every value checked before minutes of work.
-[[ $steps =~ ^(compares|sweeps|tables)(,(compares|sweeps|tables))*$ ]] ||
-  die "--steps takes compares, sweeps and tables separated by commas, not '$steps'"
+[[ $steps =~ ^(compares|storage|fetch|tables)(,(compares|storage|fetch|tables))*$ ]] ||
+  die "--steps takes compares, storage, fetch and tables separated by commas, not '$steps'"
 runs() { [[ ,$steps, == *,$1,* ]]; }
 [[ $minutes =~ ^[0-9]{1,5}$ && $minutes -gt 0 ]] || die "--minutes takes whole minutes > 0, not '$minutes'"
 [[ $frames =~ ^[0-9]{1,5}$ && $frames -gt 0 ]] || die "--frames takes a whole number > 0, not '$frames'"
@@ -122,7 +123,7 @@ if runs compares; then
   for scene in scenes/fig6_1.json scenes/fig6_3.json; do run_compare "$scene" whitted; done
 fi
 
-if runs sweeps; then
+if runs storage; then
   # Texel against storage buffers for the SDF tables, each pair side by side in one sweep.
   parts="$dir/storage_vs_texel"
   mkdir -p "$parts"
@@ -142,7 +143,9 @@ if runs sweeps; then
   done
   "$binary" merge "$parts"/*.csv --several-runs --csv "$dir/storage_vs_texel.csv" --markdown "$dir/storage_vs_texel.md" >/dev/null ||
     die "merging $parts/*.csv failed"
+fi
 
+if runs fetch; then
   # The sampled fields' fetch paths (sdf-bricks, sdf-global), each pair side by side in one sweep.
   parts="$dir/brick_fetch"
   mkdir -p "$parts"
@@ -185,11 +188,12 @@ for f in tables storage_vs_texel brick_fetch; do [[ -f $dir/$f.csv ]] && reports
 if [[ ${#reports[@]} -gt 0 ]]; then
   "$binary" report "${reports[@]}" --out "$dir/report.html" >/dev/null || die "sdfbench report failed"
 fi
-[[ $failed -eq 0 ]] || { echo "gpu_run: some configurations failed (ERROR rows in $dir/tables.csv or the storage sweeps); run it again to retry them" >&2; exit 4; }
+[[ $failed -eq 0 ]] || { echo "gpu_run: some configurations failed (ERROR rows in $dir/tables.csv or the sweeps); run it again to retry them" >&2; exit 4; }
 [[ $disagreed -eq 0 ]] || { echo "gpu_run: a compare or a table row disagreed; see $agreement and $dir/tables.md" >&2; exit 2; }
 written=()  # what this call wrote (the steps it did not run leave their files as they were)
 if runs compares; then written+=(info.txt agreement.txt); fi
-if runs sweeps; then written+=(storage_vs_texel.csv storage_vs_texel.md brick_fetch.csv brick_fetch.md); fi
+if runs storage; then written+=(storage_vs_texel.csv storage_vs_texel.md); fi
+if runs fetch; then written+=(brick_fetch.csv brick_fetch.md); fi
 if runs tables; then written+=(tables.csv tables.md); fi
 [[ ${#reports[@]} -eq 0 ]] || written+=(report.html)
 echo "gpu_run: done: $dir ($(IFS=,; echo "${written[*]}" | sed 's/,/, /g'))" >&2
