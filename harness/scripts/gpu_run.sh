@@ -7,7 +7,8 @@
 #
 #   harness/scripts/gpu_run.sh [--device gpu] [--size 1280x720] [--compare-size 640x360]
 #       [--budget-s 2] [--frames 3] [--minutes 8] [--out results] [--binary build/sdfbench]
-#       [--storage-scene thesis:bunny:1000] [--compare-objects 100] [--compare-meshes LIST]
+#       [--storage-scene thesis:bunny:1000] [--sweep-modes primary,shadow] [--compare-objects 100]
+#       [--compare-meshes LIST]
 #       [--steps compares,storage,fetch,tables | --tables-only] [-- TABLE_FLAGS...]
 #       (TABLE_FLAGS, e.g. -- --table 6.3 --objects 1,10: passed to `sdfbench table`)
 #
@@ -18,7 +19,8 @@
 # shadow, on --storage-scene at --size), side by side in storage_vs_texel.csv/.md (lavapipe: texel
 # buffers; a GPU may differ); and fetch, the sampled fields' two fetch paths (`--brick-fetch
 # texel,sampler`: texel buffers with the kernel's trilinear against the sampler's filtered 3D
-# image; sdf-bricks and sdf-global), primary and shadow, in brick_fetch.csv/.md.
+# image; sdf-bricks and sdf-global), primary and shadow, in brick_fetch.csv/.md. --sweep-modes: the
+# sweeps' modes (default primary,shadow; whitted too, or one).
 #
 # --compare-objects N: the thesis meshes' object count in the compares (thesis:<mesh>:N);
 # --compare-meshes: which meshes (default bunny,teapot,monkey,sphere; any name a thesis: spec takes).
@@ -33,7 +35,7 @@
 set -euo pipefail
 caller_dir=$PWD
 cd "$(dirname "$0")/../.."
-device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=results storage_scene=thesis:bunny:1000
+device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=results storage_scene=thesis:bunny:1000 sweep_modes=primary,shadow
 compare_objects=100 compare_meshes=bunny,teapot,monkey,sphere
 binary=${SDFBENCH:-build/sdfbench}
 [[ -n ${SDFBENCH:-} || -x $binary || ! -x sdfbench ]] || binary=./sdfbench
@@ -42,18 +44,18 @@ die() { echo "gpu_run.sh: error: $*" >&2; exit 1; }
 from_caller() { if [[ $1 == /* ]]; then echo "$1"; else echo "$caller_dir/$1"; fi; }
 while [[ $# -gt 0 ]]; do
   case "$1" in
-    --device|--size|--compare-size|--budget-s|--frames|--minutes|--out|--binary|--storage-scene|--compare-objects|--compare-meshes|--steps)
+    --device|--size|--compare-size|--budget-s|--frames|--minutes|--out|--binary|--storage-scene|--sweep-modes|--compare-objects|--compare-meshes|--steps)
       [[ $# -ge 2 ]] || die "$1 needs a value"
       case "$1" in
         --device) device=$2 ;; --size) size=$2 ;; --compare-size) compare_size=$2 ;; --budget-s) budget=$2 ;;
         --frames) frames=$2 ;; --minutes) minutes=$2 ;; --out) out=$(from_caller "$2") ;; --binary) binary=$(from_caller "$2") ;;
-        --storage-scene) storage_scene=$2 ;; --compare-objects) compare_objects=$2 ;; --compare-meshes) compare_meshes=$2 ;;
+        --storage-scene) storage_scene=$2 ;; --sweep-modes) sweep_modes=$2 ;; --compare-objects) compare_objects=$2 ;; --compare-meshes) compare_meshes=$2 ;;
         --steps) steps=$2 ;;
       esac
       shift 2 ;;
     --tables-only) steps=tables; shift ;;
     --) shift; table_flags=("$@"); break ;;
-    -h|--help) sed -n 2,32p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,34p "$0"; exit 0 ;;
     *) die "unknown argument '$1' (see --help)" ;;
   esac
 done
@@ -64,6 +66,8 @@ runs() { [[ ,$steps, == *,$1,* ]]; }
 [[ $minutes =~ ^[0-9]{1,5}$ && $minutes -gt 0 ]] || die "--minutes takes whole minutes > 0, not '$minutes'"
 [[ $frames =~ ^[0-9]{1,5}$ && $frames -gt 0 ]] || die "--frames takes a whole number > 0, not '$frames'"
 [[ $compare_objects =~ ^[0-9]{1,7}$ && $compare_objects -gt 0 ]] || die "--compare-objects takes a whole number > 0, not '$compare_objects'"
+[[ $sweep_modes =~ ^(primary|shadow|whitted)(,(primary|shadow|whitted))*$ ]] ||
+  die "--sweep-modes takes primary, shadow and whitted separated by commas, not '$sweep_modes'"
 [[ $compare_meshes =~ ^[a-z0-9_]+(,[a-z0-9_]+)*$ ]] ||
   die "--compare-meshes takes mesh names separated by commas (e.g. bunny,teapot), not '$compare_meshes'"
 [[ $budget =~ ^([0-9]+\.?[0-9]*|\.[0-9]+)$ ]] && awk -v b="$budget" 'BEGIN{exit !(b > 0 && b <= 1e7)}' ||
@@ -128,7 +132,7 @@ if runs storage; then
   parts="$dir/storage_vs_texel"
   mkdir -p "$parts"
   for backend in sdf-octree sdf-hash; do
-    for mode in primary shadow; do
+    for mode in ${sweep_modes//,/ }; do
       echo "gpu_run: texel vs storage buffers, $backend $mode" >&2
       status=0
       cell=10; [[ $backend == sdf-hash ]] && cell=1  # each backend's thesis configuration (tables 6.1, 6.2)
@@ -150,7 +154,7 @@ if runs fetch; then
   parts="$dir/brick_fetch"
   mkdir -p "$parts"
   for backend in sdf-bricks sdf-global; do
-    for mode in primary shadow; do
+    for mode in ${sweep_modes//,/ }; do
       echo "gpu_run: $backend texel vs sampler fetch, $mode" >&2
       status=0
       "$binary" sweep --scene "$storage_scene" --backend "$backend" --mode "$mode" --size "$size" --frames "$frames" \
