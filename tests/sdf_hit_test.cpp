@@ -231,20 +231,28 @@ TEST(SdfHit, OverlappingInstances) {
 
 // Walls on the faces of hash cells (extent 8, cells 0.5 to 4): a step landing a rounding error
 // past the hash box's far face ended the march in front of the wall ("sky pinholes").
-TEST(SdfHit, InsideABoxWhoseWallsLieOnHashCellFaces) {
+// One test per hash cell (each renders every SDF backend in every mode), so that no test runs long.
+class InsideABox : public testing::TestWithParam<float> {};
+
+TEST_P(InsideABox, WallsOnHashCellFacesDrawWhatEmbreeDraws) {
   Scene scene = lit_scene("inside an open box");
   add_instance(scene, add_mesh(scene, open_box(8, 4.0f)), {0.0f, 0.0f, 0.0f}, 1.0f, 0);
   add_instance(scene, add_mesh(scene, load_obj(builtin_mesh_path("sphere"), "sphere")), {0.5f, 1.0f, -1.0f}, 1.0f);
   scene.camera = Camera{.position = {0.0f, 3.0f, 3.0f}, .look_at = {0.0f, 2.5f, -4.0f}, .fov_y_degrees = 80.0f};
-  for (float cell : {0.5f, 1.0f, 2.0f, 4.0f}) {
-    SCOPED_TRACE("hash cell " + std::to_string(cell));
-    BackendOptions options;
-    options.params.set("hash_cell", std::to_string(cell));
-    expect_agreement(scene, options);
-  }
+  BackendOptions options;
+  options.params.set("hash_cell", std::to_string(GetParam()));
+  expect_agreement(scene, options);
 }
 
-TEST(SdfHit, ThesisBunnyThousandWhitted) {
+INSTANTIATE_TEST_SUITE_P(SdfHit, InsideABox, testing::Values(0.5f, 1.0f, 2.0f, 4.0f),
+                         [](const testing::TestParamInfo<float>& info) {
+                           return "cell_" + std::to_string(static_cast<int>(info.param * 10.0f)) + "_tenths";
+                         });
+
+// One test per backend.
+class ThesisBunnyThousandWhitted : public testing::TestWithParam<const char*> {};
+
+TEST_P(ThesisBunnyThousandWhitted, DrawsWhatEmbreeDraws) {
   const Scene scene = make_thesis_scene({"bunny", 1000, 1});
   auto embree = create_renderer("embree", BackendOptions{});
   embree->prepare(scene);
@@ -252,13 +260,19 @@ TEST(SdfHit, ThesisBunnyThousandWhitted) {
   const FrameImages expected = embree->render(request).images;
   AgreementThresholds thresholds;
   thresholds.min_psnr = 35.0;
-  for (const char* backend : {"sdf-hash", "sdf-octree", "sdf-bricks", "sdf-global"}) {
-    auto renderer = create_renderer(backend, BackendOptions{});
-    renderer->prepare(scene);
-    const Agreement g = compare_frames(renderer->render(request).images, expected);
-    EXPECT_EQ(check_thresholds(g, thresholds), "") << backend << ": PSNR " << g.psnr;
-  }
+  auto renderer = create_renderer(GetParam(), BackendOptions{});
+  renderer->prepare(scene);
+  const Agreement g = compare_frames(renderer->render(request).images, expected);
+  EXPECT_EQ(check_thresholds(g, thresholds), "") << GetParam() << ": PSNR " << g.psnr;
 }
+
+INSTANTIATE_TEST_SUITE_P(SdfHit, ThesisBunnyThousandWhitted,
+                         testing::Values("sdf-hash", "sdf-octree", "sdf-bricks", "sdf-global"),
+                         [](const testing::TestParamInfo<const char*>& info) {
+                           std::string name = info.param;
+                           for (char& c : name) c = c == '-' ? '_' : c;
+                           return name;
+                         });
 
 // The thesis' hit stays available: it is the converged point, so its depth differs from the
 // exact hit's by up to the hit epsilon, and both still agree with Embree on the thesis scenes.
