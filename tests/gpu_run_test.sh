@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # harness/scripts/gpu_run.sh end to end on lavapipe at a tiny size (issue 17): the device folder,
 # every compare agreeing, the tables' rows, and one-line errors for bad flags and devices.
-# Usage: tests/gpu_run_test.sh SDFBENCH_BINARY [run|storage|fetch|reruns] (four ctest tests, each under a minute)
+# Usage: tests/gpu_run_test.sh SDFBENCH_BINARY [run|whitted|storage|fetch|reruns] (five ctest tests)
 set -euo pipefail
 binary=$(realpath "$1")
-part=${2:-run}  # run: the compares and a table; storage, fetch: one sweep each; reruns: --tables-only, the report, resume, retries, errors
+part=${2:-run}  # run: primary and shadow compares and a table; whitted: its compares; storage, fetch: one sweep each; reruns: --tables-only, the report, resume, retries, errors
 root=$(cd "$(dirname "$0")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -12,17 +12,18 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 script=$root/harness/scripts/gpu_run.sh
 
 if [[ $part == run ]]; then
-# The compares (one mesh's primary and shadow, and the two whitted scenes: the other meshes run the
-# same loop) and a table of one object count and two backends (the reruns part runs every backend):
-# --steps leaves out the sweeps (the storage and fetch parts).
+# The compares of one mesh in primary and shadow mode (the other meshes run the same loop; the
+# whitted part compares the whitted scenes) and a table of one object count and two backends (the
+# reruns part runs every backend): --steps leaves out the sweeps (the storage and fetch parts).
 "$script" --binary "$binary" --device lavapipe --size 32x18 --compare-size 32x18 --compare-objects 3 --compare-meshes sphere \
-  --budget-s 1 --frames 1 --steps compares,tables --out "$work/out" -- --table 6.3 --meshes sphere --objects 1 --backends embree,sdf-octree \
+  --compare-whitted none --budget-s 1 --frames 1 --steps compares,tables --out "$work/out" -- --table 6.3 --meshes sphere --objects 1 --backends embree,sdf-octree \
   --check-size 32x18 >"$work/log" 2>&1 || { tail -20 "$work/log"; fail "gpu_run.sh on lavapipe exited $?"; }
 dir=$(echo "$work"/out/llvmpipe-*)
 [[ -d $dir ]] || fail "no folder named after the device under $work/out: $(ls "$work/out")"
 for f in info.txt agreement.txt tables.csv tables.md tables_command.txt report.html; do [[ -s $dir/$f ]] || fail "$f missing or empty"; done
 grep -q "Vulkan devices" "$dir/info.txt" || fail "info.txt lacks sdfbench info's device list"
-[[ $(grep -c '^exit 0$' "$dir/agreement.txt") -eq 4 ]] || fail "expected 4 agreeing compares: $(grep '^exit' "$dir/agreement.txt" | sort | uniq -c)"
+[[ $(grep -c '^exit 0$' "$dir/agreement.txt") -eq 2 ]] || fail "expected 2 agreeing compares: $(grep '^exit' "$dir/agreement.txt" | sort | uniq -c)"
+! grep -q 'mode whitted' "$dir/agreement.txt" || fail "--compare-whitted none compared in whitted mode"
 grep -q 'compare --scene thesis:sphere:3 --mode shadow' "$dir/agreement.txt" || fail "no shadow compare of thesis:sphere:3"
 ! grep -q 'thesis:bunny' "$dir/agreement.txt" || fail "--compare-meshes sphere compared the bunny"
 grep -q "vk-rt" "$dir/agreement.txt" || fail "vk-rt (supported on lavapipe) left out of the compares"
@@ -33,6 +34,23 @@ rows=$(($(wc -l <"$dir/tables.csv") - 1))
 [[ $rows -eq 2 ]] || fail "tables.csv has $rows rows, expected 2 (sphere x 1 object x 2 backends)"
 grep -q -- "--device lavapipe" "$dir/tables_command.txt" || fail "tables_command.txt does not record the command"
   echo "gpu_run.sh test (run): all passed"
+  exit 0
+fi
+
+if [[ $part == whitted ]]; then
+# The compares of the default whitted scenes alone (--compare-meshes none), every backend agreeing.
+"$script" --binary "$binary" --device lavapipe --compare-size 32x18 --compare-meshes none --steps compares --out "$work/out" \
+  >"$work/log" 2>&1 || { tail -20 "$work/log"; fail "gpu_run.sh --steps compares (whitted) exited $?"; }
+dir=$(echo "$work"/out/llvmpipe-*)
+[[ -s $dir/info.txt && ! -e $dir/tables.csv ]] || fail "--steps compares: $(ls "$dir")"
+[[ $(grep -c '^exit 0$' "$dir/agreement.txt") -eq 2 && $(grep -c '^exit' "$dir/agreement.txt") -eq 2 ]] ||
+  fail "expected 2 agreeing compares: $(grep '^exit' "$dir/agreement.txt" | sort | uniq -c)"
+for scene in fig6_1 fig6_3; do
+  grep -q "compare --scene scenes/$scene.json --mode whitted" "$dir/agreement.txt" || fail "no whitted compare of $scene"
+done
+! grep -q 'thesis:' "$dir/agreement.txt" || fail "--compare-meshes none compared thesis meshes"
+grep -q "vk-rt" "$dir/agreement.txt" || fail "vk-rt (supported on lavapipe) left out of the compares"
+  echo "gpu_run.sh test (whitted): all passed"
   exit 0
 fi
 
@@ -130,5 +148,8 @@ expect_error "--budget-s takes seconds" --budget-s -1
 expect_error "--steps takes compares, storage, fetch and tables" --steps compares,plots
 expect_error "--steps takes compares, storage, fetch and tables" --steps sweeps
 expect_error "--sweep-modes takes primary, shadow and whitted" --sweep-modes primary,diagonal
+expect_error "--compare-whitted: no scene file '$work/nosuch.json'" --compare-whitted "$work/nosuch.json"
+expect_error "--compare-whitted takes scenes separated by commas" --compare-whitted 'scenes/fig6_1.json,'
+expect_error "--compare-meshes takes mesh names" --compare-meshes none,
 [[ ! -e $work/bad ]] || fail "a refused run created its output folder"
 echo "gpu_run.sh test (reruns): all passed"

@@ -8,7 +8,7 @@
 #   harness/scripts/gpu_run.sh [--device gpu] [--size 1280x720] [--compare-size 640x360]
 #       [--budget-s 2] [--frames 3] [--minutes 8] [--out results] [--binary build/sdfbench]
 #       [--storage-scene thesis:bunny:1000] [--sweep-modes primary,shadow] [--compare-objects 100]
-#       [--compare-meshes LIST]
+#       [--compare-meshes LIST] [--compare-whitted SCENES]
 #       [--steps compares,storage,fetch,tables | --tables-only] [-- TABLE_FLAGS...]
 #       (TABLE_FLAGS, e.g. -- --table 6.3 --objects 1,10: passed to `sdfbench table`)
 #
@@ -23,7 +23,10 @@
 # sweeps' modes (default primary,shadow; whitted too, or one).
 #
 # --compare-objects N: the thesis meshes' object count in the compares (thesis:<mesh>:N);
-# --compare-meshes: which meshes (default bunny,teapot,monkey,sphere; any name a thesis: spec takes).
+# --compare-meshes: which meshes (default bunny,teapot,monkey,sphere; any name a thesis: spec takes;
+# none: no mesh compares). --compare-whitted: the scenes compared in whitted mode, separated by
+# commas (default scenes/fig6_1.json,scenes/fig6_3.json; a file or a generator spec; none: no
+# whitted compares).
 # On lavapipe, as a check of the script: --device lavapipe --size 64x36 --compare-size 64x36.
 # --binary defaults to $SDFBENCH, else build/sdfbench, else ./sdfbench (the launcher at the top
 # of a bundle from make_bundle.sh, where this script is harness/scripts/gpu_run.sh).
@@ -31,12 +34,12 @@
 # compare or a row disagreed, 3 when the tables were cut by --minutes (run it again, with
 # --tables-only to skip the info and the compares already done, to finish; failed rows are run
 # again), 4 when some table or sweep configurations failed (ERROR rows), 1 on an error.
-# --out and --binary, when given, are relative to the folder the script is started from.
+# --out, --binary and --compare-whitted files, when given, are relative to the caller's folder.
 set -euo pipefail
 caller_dir=$PWD
 cd "$(dirname "$0")/../.."
 device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=results storage_scene=thesis:bunny:1000 sweep_modes=primary,shadow
-compare_objects=100 compare_meshes=bunny,teapot,monkey,sphere
+compare_objects=100 compare_meshes=bunny,teapot,monkey,sphere compare_whitted=default
 binary=${SDFBENCH:-build/sdfbench}
 [[ -n ${SDFBENCH:-} || -x $binary || ! -x sdfbench ]] || binary=./sdfbench
 table_flags=() steps=compares,storage,fetch,tables failed=0
@@ -44,18 +47,19 @@ die() { echo "gpu_run.sh: error: $*" >&2; exit 1; }
 from_caller() { if [[ $1 == /* ]]; then echo "$1"; else echo "$caller_dir/$1"; fi; }
 while [[ $# -gt 0 ]]; do
   case "$1" in
-    --device|--size|--compare-size|--budget-s|--frames|--minutes|--out|--binary|--storage-scene|--sweep-modes|--compare-objects|--compare-meshes|--steps)
+    --device|--size|--compare-size|--budget-s|--frames|--minutes|--out|--binary|--storage-scene|--sweep-modes|--compare-objects|--compare-meshes|--compare-whitted|--steps)
       [[ $# -ge 2 ]] || die "$1 needs a value"
       case "$1" in
         --device) device=$2 ;; --size) size=$2 ;; --compare-size) compare_size=$2 ;; --budget-s) budget=$2 ;;
         --frames) frames=$2 ;; --minutes) minutes=$2 ;; --out) out=$(from_caller "$2") ;; --binary) binary=$(from_caller "$2") ;;
         --storage-scene) storage_scene=$2 ;; --sweep-modes) sweep_modes=$2 ;; --compare-objects) compare_objects=$2 ;; --compare-meshes) compare_meshes=$2 ;;
+        --compare-whitted) compare_whitted=$2 ;;
         --steps) steps=$2 ;;
       esac
       shift 2 ;;
     --tables-only) steps=tables; shift ;;
     --) shift; table_flags=("$@"); break ;;
-    -h|--help) sed -n 2,34p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,37p "$0"; exit 0 ;;
     *) die "unknown argument '$1' (see --help)" ;;
   esac
 done
@@ -69,7 +73,23 @@ runs() { [[ ,$steps, == *,$1,* ]]; }
 [[ $sweep_modes =~ ^(primary|shadow|whitted)(,(primary|shadow|whitted))*$ ]] ||
   die "--sweep-modes takes primary, shadow and whitted separated by commas, not '$sweep_modes'"
 [[ $compare_meshes =~ ^[a-z0-9_]+(,[a-z0-9_]+)*$ ]] ||
-  die "--compare-meshes takes mesh names separated by commas (e.g. bunny,teapot), not '$compare_meshes'"
+  die "--compare-meshes takes mesh names separated by commas (e.g. bunny,teapot) or none, not '$compare_meshes'"
+[[ $compare_meshes == none ]] && compare_meshes=
+[[ $compare_whitted =~ ^[^,[:space:]]+(,[^,[:space:]]+)*$ ]] ||
+  die "--compare-whitted takes scenes separated by commas (files or generator specs) or none, not '$compare_whitted'"
+whitted_scenes=(scenes/fig6_1.json scenes/fig6_3.json)  # the repository's
+if [[ $compare_whitted != default ]]; then
+  whitted_scenes=()
+  [[ $compare_whitted == none ]] || IFS=, read -ra whitted_scenes <<<"$compare_whitted"
+  for i in "${!whitted_scenes[@]}"; do
+    scene=${whitted_scenes[$i]}
+    if [[ $scene == *.json ]]; then  # a file, relative to the caller's folder
+      scene=$(from_caller "$scene")
+      [[ -f $scene ]] || die "--compare-whitted: no scene file '$scene'"
+      whitted_scenes[$i]=$scene
+    fi
+  done
+fi
 [[ $budget =~ ^([0-9]+\.?[0-9]*|\.[0-9]+)$ ]] && awk -v b="$budget" 'BEGIN{exit !(b > 0 && b <= 1e7)}' ||
   die "--budget-s takes seconds > 0, not '$budget'"
 for pair in "--size:$size" "--compare-size:$compare_size"; do
@@ -124,7 +144,7 @@ if runs compares; then
   for mesh in ${compare_meshes//,/ }; do
     for mode in primary shadow; do run_compare "thesis:$mesh:$compare_objects" "$mode"; done
   done
-  for scene in scenes/fig6_1.json scenes/fig6_3.json; do run_compare "$scene" whitted; done
+  for scene in "${whitted_scenes[@]}"; do run_compare "$scene" whitted; done
 fi
 
 if runs storage; then
