@@ -221,33 +221,35 @@ vec3 ray_dir(const Scene& scene, uint32_t x, uint32_t y, uint32_t w, uint32_t h)
   return glm::normalize(vec3(f.camera_forward) + sx * vec3(f.camera_right) + sy * vec3(f.camera_up));
 }
 
-TEST(ImplicitRender, SphereDepthAtImageCentre) {
+// One test per backend: each compiles its own kernel (all in one test: 17 s with a cold shader cache).
+class ImplicitRender : public testing::TestWithParam<std::string> {};
+
+TEST_P(ImplicitRender, SphereDepthAtImageCentre) {
   // A unit sphere scaled by 2 and centred at z = -2: its front at z = 0, 10 from the camera.
   Transform t;
   t.translation = {0, 0, -2};
   t.scale = 2.0f;
   const Scene scene = head_on_scene({sphere(1)}, t);
-  for (const std::string& backend : backend_names()) {
-    const FrameImages f = render(backend, scene, RenderMode::Primary, 33, 33);
-    const size_t centre = 16 * 33 + 16;
-    EXPECT_EQ(f.instance_id[centre], 0u) << backend;  // the first id after the (no) meshes
-    EXPECT_NEAR(f.depth[centre], 10.0f, 1e-3f) << backend;
-    EXPECT_GT(f.normal[centre].z, 0.999f) << backend;
-    EXPECT_EQ(f.instance_id[0], shading::NO_INSTANCE_VALUE) << backend;
-  }
+  const FrameImages f = render(GetParam(), scene, RenderMode::Primary, 33, 33);
+  const size_t centre = 16 * 33 + 16;
+  EXPECT_EQ(f.instance_id[centre], 0u);  // the first id after the (no) meshes
+  EXPECT_NEAR(f.depth[centre], 10.0f, 1e-3f);
+  EXPECT_GT(f.normal[centre].z, 0.999f);
+  EXPECT_EQ(f.instance_id[0], shading::NO_INSTANCE_VALUE);
 }
 
-TEST(ImplicitRender, SubtractionHoleIsSeeThrough) {
+TEST_P(ImplicitRender, SubtractionHoleIsSeeThrough) {
   ImplicitNode bore{.kind = ImplicitKind::Capsule, .a = vec4(0, 0, -2, 0.4f), .b = vec4(0, 0, 2, 0)};
   const Scene scene = head_on_scene({box({1, 1, 1}), bore, op(ImplicitKind::Subtraction)});
-  for (const std::string& backend : backend_names()) {
-    const FrameImages f = render(backend, scene, RenderMode::Primary, 33, 33);
-    EXPECT_EQ(f.instance_id[16 * 33 + 16], shading::NO_INSTANCE_VALUE) << backend;  // through the hole
-    const size_t beside = 16 * 33 + 21;  // x ~ 0.73 on the front face z = 1, outside the 0.4 hole
-    EXPECT_EQ(f.instance_id[beside], 0u) << backend;
-    EXPECT_NEAR(f.depth[beside] * -ray_dir(scene, 21, 16, 33, 33).z, 9.0f, 1e-3f) << backend;
-  }
+  const FrameImages f = render(GetParam(), scene, RenderMode::Primary, 33, 33);
+  EXPECT_EQ(f.instance_id[16 * 33 + 16], shading::NO_INSTANCE_VALUE);  // through the hole
+  const size_t beside = 16 * 33 + 21;  // x ~ 0.73 on the front face z = 1, outside the 0.4 hole
+  EXPECT_EQ(f.instance_id[beside], 0u);
+  EXPECT_NEAR(f.depth[beside] * -ray_dir(scene, 21, 16, 33, 33).z, 9.0f, 1e-3f);
 }
+
+INSTANTIATE_TEST_SUITE_P(Backends, ImplicitRender, testing::ValuesIn(backend_names()),
+                         [](const auto& info) { return test::backend_test_name(info.param); });
 
 // Meshes and implicit objects together: a mirror mesh sphere, a glass implicit sphere, a
 // checkered CSG object, a torus and a capsule on a checker floor.
@@ -288,7 +290,7 @@ Scene mixed_scene() {
 }
 
 // One test per mode and backend: each compiles its own kernel, and a whitted kernel with implicit
-// objects takes lavapipe 13-22 s to compile with a cold shader cache (all of them in one test: 2 min).
+// objects takes lavapipe 5-7 s to compile with a cold shader cache.
 class ImplicitAgreement : public testing::TestWithParam<std::tuple<RenderMode, std::string>> {};
 
 TEST_P(ImplicitAgreement, DrawsWhatEmbreeDraws) {
