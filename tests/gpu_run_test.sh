@@ -17,7 +17,7 @@ if [[ $part == run ]]; then
 # reruns part runs every backend): --steps leaves out the sweeps (the storage and fetch parts).
 "$script" --binary "$binary" --device lavapipe --size 32x18 --compare-size 32x18 --compare-objects 3 --compare-meshes sphere \
   --compare-whitted none --budget-s 1 --frames 1 --steps compares,tables --out "$work/out" -- --table 6.3 --meshes sphere --objects 1 --backends embree,sdf-octree \
-  --check-size 32x18 >"$work/log" 2>&1 || { tail -20 "$work/log"; fail "gpu_run.sh on lavapipe exited $?"; }
+  --check-size 32x18 >"$work/log" 2>&1 || { status=$?; tail -20 "$work/log"; fail "gpu_run.sh on lavapipe exited $status"; }
 dir=$(echo "$work"/out/llvmpipe-*)
 [[ -d $dir ]] || fail "no folder named after the device under $work/out: $(ls "$work/out")"
 for f in info.txt agreement.txt tables.csv tables.md tables_command.txt report.html; do [[ -s $dir/$f ]] || fail "$f missing or empty"; done
@@ -40,7 +40,7 @@ fi
 if [[ $part == whitted ]]; then
 # The compares of the default whitted scenes alone (--compare-meshes none), every backend agreeing.
 "$script" --binary "$binary" --device lavapipe --compare-size 32x18 --compare-meshes none --steps compares --out "$work/out" \
-  >"$work/log" 2>&1 || { tail -20 "$work/log"; fail "gpu_run.sh --steps compares (whitted) exited $?"; }
+  >"$work/log" 2>&1 || { status=$?; tail -20 "$work/log"; fail "gpu_run.sh --steps compares (whitted) exited $status"; }
 dir=$(echo "$work"/out/llvmpipe-*)
 [[ -s $dir/info.txt && ! -e $dir/tables.csv ]] || fail "--steps compares: $(ls "$dir")"
 [[ $(grep -c '^exit 0$' "$dir/agreement.txt") -eq 2 && $(grep -c '^exit' "$dir/agreement.txt") -eq 2 ]] ||
@@ -59,7 +59,8 @@ if [[ $part == storage || $part == fetch ]]; then
 # kernels), in primary mode (--sweep-modes; shadow runs the same loop and compiles twice as long):
 # no compares, no tables, no other sweep, the report of the sweep's CSV.
 "$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --steps "$part" \
-  --storage-scene thesis:sphere:3 --sweep-modes primary --out "$work/out" >"$work/log" 2>&1 || { tail -20 "$work/log"; fail "gpu_run.sh --steps $part exited $?"; }
+  --storage-scene thesis:sphere:3 --sweep-modes primary --out "$work/out" >"$work/log" 2>&1 ||
+  { status=$?; tail -20 "$work/log"; fail "gpu_run.sh --steps $part exited $status"; }
 dir=$(echo "$work"/out/llvmpipe-*)
 [[ ! -e $dir/agreement.txt && ! -e $dir/tables.csv && ! -e $dir/info.txt ]] || fail "--steps $part ran more: $(ls "$dir")"
 if [[ $part == storage ]]; then
@@ -83,6 +84,15 @@ rows=$(($(wc -l <"$csv") - 1))
 done_line=$(grep "gpu_run: done:" "$work/log")
 [[ $done_line == *"$(basename "$csv")"*report.html* && $done_line != *"$other"* && $done_line != *agreement* && $done_line != *tables.csv* ]] ||
   fail "the done line: $done_line"
+if [[ $part == fetch ]]; then
+  # A second call in the same folder merges only its own CSVs, not another call's (a shadow one).
+  cp "$dir/brick_fetch/sdf-bricks_primary.csv" "$dir/brick_fetch/sdf-bricks_shadow.csv"
+  "$script" --binary "$binary" --device lavapipe --size 32x18 --budget-s 1 --frames 1 --steps fetch \
+    --storage-scene thesis:sphere:3 --sweep-modes primary --out "$work/out" >"$work/log2" 2>&1 ||
+    { status=$?; tail -20 "$work/log2"; fail "the second --steps fetch call exited $status"; }
+  rows=$(($(wc -l <"$csv") - 1))
+  [[ $rows -eq 4 ]] || fail "a second call merged $rows rows into brick_fetch.csv, expected its own 4"
+fi
   echo "gpu_run.sh test ($part): all passed"
   exit 0
 fi

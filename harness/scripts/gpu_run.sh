@@ -38,8 +38,8 @@
 set -euo pipefail
 caller_dir=$PWD
 cd "$(dirname "$0")/../.."
-device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=results storage_scene=thesis:bunny:1000 sweep_modes=primary,shadow
-compare_objects=100 compare_meshes=bunny,teapot,monkey,sphere compare_whitted=default
+device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=results
+storage_scene=thesis:bunny:1000 sweep_modes=primary,shadow compare_objects=100 compare_meshes=bunny,teapot,monkey,sphere compare_whitted=default
 binary=${SDFBENCH:-build/sdfbench}
 [[ -n ${SDFBENCH:-} || -x $binary || ! -x sdfbench ]] || binary=./sdfbench
 table_flags=() steps=compares,storage,fetch,tables failed=0
@@ -149,7 +149,7 @@ fi
 
 if runs storage; then
   # Texel against storage buffers for the SDF tables, each pair side by side in one sweep.
-  parts="$dir/storage_vs_texel"
+  parts="$dir/storage_vs_texel" swept=()  # this call's CSVs (an earlier call may have run other modes)
   mkdir -p "$parts"
   for backend in sdf-octree sdf-hash; do
     for mode in ${sweep_modes//,/ }; do
@@ -163,15 +163,16 @@ if runs storage; then
         0) ;; 2) disagreed=1 ;; 4) failed=1 ;;
         *) die "the storage-vs-texel sweep ($backend, $mode) failed; see $parts/${backend}_$mode.log" ;;
       esac
+      swept+=("$parts/${backend}_$mode.csv")
     done
   done
-  "$binary" merge "$parts"/*.csv --several-runs --csv "$dir/storage_vs_texel.csv" --markdown "$dir/storage_vs_texel.md" >/dev/null ||
-    die "merging $parts/*.csv failed"
+  "$binary" merge "${swept[@]}" --several-runs --csv "$dir/storage_vs_texel.csv" --markdown "$dir/storage_vs_texel.md" >/dev/null ||
+    die "merging ${swept[*]} failed"
 fi
 
 if runs fetch; then
   # The sampled fields' fetch paths (sdf-bricks, sdf-global), each pair side by side in one sweep.
-  parts="$dir/brick_fetch"
+  parts="$dir/brick_fetch" swept=()
   mkdir -p "$parts"
   for backend in sdf-bricks sdf-global; do
     for mode in ${sweep_modes//,/ }; do
@@ -184,10 +185,11 @@ if runs fetch; then
         0) ;; 2) disagreed=1 ;; 4) failed=1 ;;
         *) die "the brick fetch sweep ($backend, $mode) failed; see $parts/${backend}_$mode.log" ;;
       esac
+      swept+=("$parts/${backend}_$mode.csv")
     done
   done
-  "$binary" merge "$parts"/*.csv --several-runs --csv "$dir/brick_fetch.csv" --markdown "$dir/brick_fetch.md" >/dev/null ||
-    die "merging $parts/*.csv failed"
+  "$binary" merge "${swept[@]}" --several-runs --csv "$dir/brick_fetch.csv" --markdown "$dir/brick_fetch.md" >/dev/null ||
+    die "merging ${swept[*]} failed"
 fi
 
 if runs tables; then
