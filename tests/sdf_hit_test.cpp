@@ -18,6 +18,7 @@
 #include "renderers/renderer.h"
 #include "renderers/shading/gpu_types.h"
 #include "scenes/thesis_layout.h"
+#include "tests/test_support.h"
 
 namespace sdfbench {
 namespace {
@@ -268,11 +269,7 @@ TEST_P(ThesisBunnyThousandWhitted, DrawsWhatEmbreeDraws) {
 
 INSTANTIATE_TEST_SUITE_P(SdfHit, ThesisBunnyThousandWhitted,
                          testing::Values("sdf-hash", "sdf-octree", "sdf-bricks", "sdf-global"),
-                         [](const testing::TestParamInfo<const char*>& info) {
-                           std::string name = info.param;
-                           for (char& c : name) c = c == '-' ? '_' : c;
-                           return name;
-                         });
+                         [](const auto& info) { return test::backend_test_name(info.param); });
 
 // The thesis' hit stays available: it is the converged point, so its depth differs from the
 // exact hit's by up to the hit epsilon, and both still agree with Embree on the thesis scenes.
