@@ -82,12 +82,12 @@ vec3 implicit_surface(GpuImplicitObject o, vec3 p, vec3 ray_dir, OUT(uint) prim)
   prim = 0u;
   for (uint k = 0u; k < 7u; ++k) {
     uint axis = min(k >> 1u, 2u), owner;
-    float offset = (k & 1u) == 0u ? h : -h;
+    float sign = (k & 1u) == 0u ? 1.0f : -1.0f;
     vec3 q = p;
-    if (k < 6u) q[axis] += offset;
+    if (k < 6u) q[axis] += sign * h;
     float d = implicit_distance(o.info.x, o.info.y, q, owner);
     if (k < 6u) {
-      g[axis] += (k & 1u) == 0u ? d : -d;
+      g[axis] += sign * d;
     } else {
       prim = owner;
     }
