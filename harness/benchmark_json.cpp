@@ -13,12 +13,17 @@
 namespace sdfbench {
 namespace {
 
-// The numeric columns that become counters (when the row has a finite value).
-const char* const kCounters[] = {"mrays_per_s", "fps", "rays_per_pixel", "steps_per_ray", "instance_evals_per_ray",
-                                 "triangle_evals_per_ray", "aabb_tests_per_ray", "triangle_tests_per_ray",
-                                 "out_of_steps_per_ray", "field_samples_per_ray", "cell_sets_per_ray", "prepare_ms",
-                                 "build_ms", "structure_bytes", "hit_agreement", "id_agreement", "psnr", "depth_p99",
-                                 "depth_p99_voxels", "overlap", "frames", "load_avg", "cpu_steal_pct"};
+// The numeric columns that become counters (when the row has a finite value), the work counters' among them.
+const std::vector<std::string>& counter_fields() {
+  static const std::vector<std::string> fields = [] {
+    std::vector<std::string> f = {"mrays_per_s", "fps", "rays_per_pixel"};
+    f.insert(f.end(), counter_columns().begin(), counter_columns().end());
+    f.insert(f.end(), {"prepare_ms", "build_ms", "structure_bytes", "hit_agreement", "id_agreement", "psnr", "depth_p99",
+                       "depth_p99_voxels", "overlap", "frames", "load_avg", "cpu_steal_pct"});
+    return f;
+  }();
+  return fields;
+}
 
 bool number(const std::string& text, double& value) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -88,8 +93,8 @@ std::string benchmark_json(const CsvTable& rows) {
     b["real_time"] = ms;
     b["cpu_time"] = ms;  // no CPU time is measured (see the header)
     b["time_unit"] = "ms";
-    for (const char* counter : kCounters)
-      if (double v = 0.0; number(field(rows, r, counter), v)) b[counter] = v;
+    for (const std::string& counter : counter_fields())
+      if (double v = 0.0; number(field(rows, r, counter.c_str()), v)) b[counter] = v;
     b["agreement"] = field(rows, r, "agreement");
     benchmarks.push_back(std::move(b));
   }

@@ -65,7 +65,7 @@ Measurement configuration_fields(const BenchConfig& config, size_t run_index, co
   m.backend_params = recorded_params(backend, resolve_params(backend, config.options.params));
   if (backend.stores_structure) {
     m.cache = config.options.cache.path;
-    if (!m.cache.empty()) m.on_bad_cache = config.options.cache.on_bad == sdf::BadCachePolicy::Rebuild ? "rebuild" : "refuse";
+    if (!m.cache.empty()) m.on_bad_cache = config.options.cache.on_bad == BadCachePolicy::Rebuild ? "rebuild" : "refuse";
   }
   m.requested_frames = settings.frames;
   m.warmup = settings.warmup;
@@ -193,18 +193,9 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   // counters change no pixel).
   const FrameRequest check{settings_.check_size.width, settings_.check_size.height, config.mode, true, config.max_depth, true};
   const FrameResult checked = renderer->render(check);
-  auto per_ray = [&](uint32_t kind) -> std::optional<double> {
-    if (!checked.counters[kind] || checked.rays == 0) return std::nullopt;
-    return static_cast<double>(*checked.counters[kind]) / static_cast<double>(checked.rays);
-  };
-  m.steps_per_ray = per_ray(COUNTER_STEPS);
-  m.instance_evals_per_ray = per_ray(COUNTER_INSTANCE_EVALS);
-  m.triangle_evals_per_ray = per_ray(COUNTER_TRIANGLE_EVALS);
-  m.aabb_tests_per_ray = per_ray(COUNTER_AABB_TESTS);
-  m.triangle_tests_per_ray = per_ray(COUNTER_TRIANGLE_TESTS);
-  m.out_of_steps_per_ray = per_ray(COUNTER_OUT_OF_STEPS);
-  m.field_samples_per_ray = per_ray(COUNTER_FIELD_SAMPLES);
-  m.cell_sets_per_ray = per_ray(COUNTER_CELL_SETS);
+  for (uint32_t k = 0; k < COUNTER_KINDS; ++k)
+    if (checked.counters[k] && checked.rays > 0)
+      m.per_ray[k] = static_cast<double>(*checked.counters[k]) / static_cast<double>(checked.rays);
   if (config.backend == settings_.reference) {
     m.agreement = "reference";
   } else {

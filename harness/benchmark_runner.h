@@ -1,5 +1,5 @@
 #pragma once
-// Runs one benchmark configuration the way DESIGN.md's methodology says: prepare (timed),
+// Runs one benchmark configuration the way docs/design.md, "Measuring", says: prepare (timed),
 // warm-up frames, N timed frames inside a time budget, then the image-agreement check against
 // the reference backend at a check resolution. Scenes and reference images are cached across
 // configurations of one run.

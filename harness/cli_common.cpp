@@ -11,21 +11,12 @@
 #include "renderers/shading/gpu_types.h"
 #include "util/error.h"
 #include "util/input_file.h"
+#include "util/number_text.h"
 
 namespace sdfbench {
 
-namespace {
-
-std::string short_number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
-}
-
-}  // namespace
-
 CLI::Validator number_in(double lo, double hi, bool lo_open) {
-  const std::string range = (lo_open ? "(" : "[") + short_number(lo) + ", " + short_number(hi) + "]";
+  const std::string range = (lo_open ? "(" : "[") + six_digits(lo) + ", " + six_digits(hi) + "]";
   return CLI::Validator(
       [=](std::string& text) -> std::string {
         double v = 0.0;
@@ -95,8 +86,8 @@ void add_backend_options(CLI::App& command, BackendOptions& options) {
       })
       ->group("SDF structures");
   command.add_option("--on-bad-cache", options.cache.on_bad, "an invalid or stale --cache file: refuse (default, an error) or rebuild")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, sdf::BadCachePolicy>{{"refuse", sdf::BadCachePolicy::Refuse},
-                                                                                    {"rebuild", sdf::BadCachePolicy::Rebuild}},
+      ->transform(CLI::CheckedTransformer(std::map<std::string, BadCachePolicy>{{"refuse", BadCachePolicy::Refuse},
+                                                                                    {"rebuild", BadCachePolicy::Rebuild}},
                                           CLI::ignore_case))
       ->group("SDF structures");
 }

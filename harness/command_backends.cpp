@@ -36,7 +36,7 @@ void print_json() {
   nlohmann::json out = {{"backends", nlohmann::json::array()}, {"default_table_backends", default_table_backends()}};
   for (const BackendInfo& b : backends()) {
     nlohmann::json entry = {{"name", b.name},
-                            {"kind", b.kind},
+                            {"kind", to_string(b.kind)},
                             {"summary", b.summary},
                             {"device", b.vulkan ? "vulkan" : "cpu"},
                             {"counters", b.counters},
@@ -54,7 +54,7 @@ void print_json() {
 
 void print_text() {
   for (const BackendInfo& b : backends()) {
-    std::cout << b.name << " (" << b.kind << ", " << (b.vulkan ? "Vulkan" : "CPU") << (b.in_table ? "" : ", not in `table` by default")
+    std::cout << b.name << " (" << to_string(b.kind) << ", " << (b.vulkan ? "Vulkan" : "CPU") << (b.in_table ? "" : ", not in `table` by default")
               << "): " << b.summary << "\n";
     if (b.params.empty()) std::cout << "  parameters: none\n";
     for (const ParamSpec& spec : b.params)

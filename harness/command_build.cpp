@@ -56,8 +56,8 @@ double peak_memory_mb() {
 void run_build(const BuildArgs& args) {
   const auto wall_start = std::chrono::steady_clock::now();
   const BackendInfo& backend = backend_info(args.backend);
-  if (!owns(backend, "hash_cell"))
-    throw Error("--backend " + args.backend + ": build makes the exact structures of " + owners_of("hash_cell") +
+  if (!backend.scene_hash)
+    throw Error("--backend " + args.backend + ": build makes the exact structures of " + backends_with(&BackendInfo::scene_hash) +
                 " (mesh grids, scene hash, octrees); " + args.backend + " has no scene hash");
   check_params_taken(args.params, {args.backend});
   const BackendParams params = resolve_params(backend, args.params);
@@ -110,7 +110,7 @@ void register_build_command(CLI::App& app) {
   auto args = std::make_shared<BuildArgs>();
   CLI::App* cmd = app.add_subcommand("build", "Build a scene's SDF structures (mesh grids, scene hash, octrees) and report them");
   cmd->add_option("--scene", args->scene, "scene descriptor (.json) or generator, e.g. thesis:bunny:1000")->required();
-  cmd->add_option("--backend", args->backend, "whose structures and defaults: one of " + owners_of("hash_cell"))
+  cmd->add_option("--backend", args->backend, "whose structures and defaults: one of " + backends_with(&BackendInfo::scene_hash))
       ->capture_default_str();
   // The structures' parameters (not the tracing's: build traces nothing).
   add_backend_param_options(*cmd, args->params, [](const ParamSpec& spec) { return spec.group == "SDF structures"; });

@@ -288,7 +288,7 @@ void register_check_sdf_command(CLI::App& app) {
   cmd->add_option("--seed", args->seed, "PCG32 seed of the samples")->capture_default_str();
   cmd->add_option("--tolerance", args->tolerance, "pass if max |grid - brute force| <= tolerance x mesh extent")
       ->capture_default_str();
-  cmd->add_option("--rule", args->rule, "list rule: tight (default) or sphere (DESIGN.md's cheap bound, for comparison)")
+  cmd->add_option("--rule", args->rule, "list rule: tight (default) or sphere (docs/design.md's cheap bound, for comparison)")
       ->capture_default_str();
   cmd->add_option("--subdivision", args->subdivision, "tight rule: test each cell's S^3 sub-boxes too (1..8)")
       ->capture_default_str();

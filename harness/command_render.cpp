@@ -9,6 +9,7 @@
 #include "harness/output_paths.h"
 #include "harness/structure_view.h"
 #include "harness/timing_stats.h"
+#include "renderers/sdf/sdf_cache.h"
 #include "renderers/sdf/sdf_params.h"
 #include "scenes/scene_source.h"
 #include "util/error.h"
@@ -76,9 +77,9 @@ void run_render(const RenderArgs& args) {
   if (!args.aov.empty()) check_aov_path(args.aov, "--aov");
   const BackendInfo& backend = backend_info(args.backend);
   if (!args.view.empty() && args.out.empty()) throw Error("--view draws over the --out image: give --out");
-  if (!args.view.empty() && !owns(backend, "hash_cell"))
+  if (!args.view.empty() && !backend.scene_hash)
     throw Error("--view draws the scene hash and its octrees: " + args.backend + " has none (backends with one: " +
-                owners_of("hash_cell") + ")");
+                backends_with(&BackendInfo::scene_hash) + ")");
   if (!args.heatmap.empty()) {
     check_image_path(args.heatmap, "--heatmap");
     if (!backend.steps) throw Error("--heatmap maps sphere-tracing steps: " + args.backend + " takes none (use an sdf-* backend)");

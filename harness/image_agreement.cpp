@@ -45,7 +45,7 @@ ColourDifference colour_difference(const FrameImages& a, const FrameImages& b, f
 
 Agreement compare_frames(const FrameImages& test, const FrameImages& reference, const std::vector<float>& instance_voxels) {
   if (test.width != reference.width || test.height != reference.height || test.color.empty())
-    throw Error("internal: compared frames differ in size or hold no pixels");
+    throw InternalError("compared frames differ in size or hold no pixels");
   const size_t pixels = test.color.size();
   size_t hit_agree = 0, id_candidates = 0, id_agree = 0;
   std::vector<double> depth_errors, voxel_errors;

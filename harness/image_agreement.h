@@ -1,7 +1,7 @@
 #pragma once
 #include <optional>
 #include <vector>
-// How closely a backend's frame matches a reference frame (DESIGN.md, "Image agreement").
+// How closely a backend's frame matches a reference frame (docs/design.md, "Image agreement").
 #include <string>
 
 #include "renderers/renderer.h"

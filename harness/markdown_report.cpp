@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "harness/measurement.h"
 #include "harness/overlap_axis.h"
 #include "harness/row_verdict.h"
 #include "renderers/backend_registry.h"
@@ -205,8 +206,8 @@ const BackendInfo* registered(const std::string& name) {
 
 // Issue 37's question, from the registry's kinds: does a distance field (sdf-*) pass a hierarchy
 // (a BVH in a compute kernel, the driver's ray tracing) on the same device?
-bool is_field(const BackendInfo* b) { return b && b->vulkan && b->kind.rfind("sdf-", 0) == 0; }
-bool is_hierarchy(const BackendInfo* b) { return b && b->vulkan && (b->kind == "compute-bvh" || b->kind == "driver-rt"); }
+bool is_field(const BackendInfo* b) { return b && b->vulkan && is_sdf(b->kind); }
+bool is_hierarchy(const BackendInfo* b) { return b && b->vulkan && (b->kind == BackendKind::ComputeBvh || b->kind == BackendKind::DriverRt); }
 
 // The overlap table's rows of one mesh, object count and mode: a row per k (asked, and the
 // overlap measured in the scene), Mrays/s per backend, then each field's FPS over each hierarchy's.
@@ -269,13 +270,14 @@ void sweep_table(std::ostringstream& out, const std::vector<Row>& rows) {
     double scale;
   };
   std::vector<Figure> figures = {{"build_ms", "build ms", 0, 1}, {"structure_bytes", "structure MB", 1, 1e-6}};
-  const std::vector<Figure> optional = {
-      {"steps_per_ray", "steps/ray", 1, 1},           {"instance_evals_per_ray", "instance evals/ray", 1, 1},
-      {"triangle_evals_per_ray", "triangle evals/ray", 1, 1}, {"field_samples_per_ray", "field samples/ray", 1, 1},
-      {"cell_sets_per_ray", "cell sets/ray", 1, 1},
-      {"aabb_tests_per_ray", "AABB tests/ray", 1, 1}, {"triangle_tests_per_ray", "triangle tests/ray", 1, 1},
-      {"hit_agreement", "hit %", 2, 1},               {"id_agreement", "id %", 2, 1},
-      {"depth_p99_voxels", "depth p99 (voxels)", 3, 1}, {"psnr", "PSNR dB", 1, 1}};
+  std::vector<Figure> optional;  // the work counters (what the march evaluates, then the tests), the agreement
+  for (CounterGroup group : {CounterGroup::evaluations, CounterGroup::tests})
+    for (const CounterInfo& c : counter_table())
+      if (c.group == group) optional.push_back({counter_columns()[c.id].c_str(), c.label, 1, 1});
+  optional.insert(optional.end(), {{"hit_agreement", "hit %", 2, 1},
+                                   {"id_agreement", "id %", 2, 1},
+                                   {"depth_p99_voxels", "depth p99 (voxels)", 3, 1},
+                                   {"psnr", "PSNR dB", 1, 1}});
   for (const Figure& f : optional)
     if (std::any_of(rows.begin(), rows.end(), [&](const Row& r) { return !r[f.column].empty(); })) figures.push_back(f);
   // sweep --overlap: the scene's k (asked, and the overlap measured) is an axis too

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <concepts>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -24,8 +26,58 @@ std::string csv_number(double v) {
 
 namespace {
 
-std::string number(double v) { return csv_number(v); }
-std::string number(const std::optional<double>& v) { return v ? number(*v) : ""; }
+// A field as the CSV writes it: text as is, integers in decimal, numbers by csv_number, flags 1/0,
+// an empty optional as an empty cell.
+std::string cell(const std::string& v) { return v; }
+std::string cell(double v) { return csv_number(v); }
+std::string cell(bool v) { return v ? "1" : "0"; }
+template <std::unsigned_integral T>
+std::string cell(T v) { return std::to_string(v); }
+template <class T>
+std::string cell(const std::optional<T>& v) { return v ? cell(*v) : ""; }
+
+// One CSV column: its name and how a Measurement writes it.
+struct Column {
+  std::string name;
+  std::function<std::string(const Measurement&)> write;
+};
+// A column named as the Measurement field it writes.
+#define FIELD_COLUMN(field) Column{#field, [](const Measurement& m) { return cell(m.field); }}
+
+// The CSV's columns in their order (README, "CSV columns"; committed CSVs are read back by name,
+// but keep the order). The backends' parameters and the work counters come from their tables.
+const std::vector<Column>& csv_columns() {
+  static const std::vector<Column> columns = [] {
+    std::vector<Column> c = {FIELD_COLUMN(run_index), FIELD_COLUMN(run_id), FIELD_COLUMN(table), FIELD_COLUMN(scene),
+                             FIELD_COLUMN(mesh), FIELD_COLUMN(triangles), FIELD_COLUMN(objects), FIELD_COLUMN(overlap),
+                             FIELD_COLUMN(backend), FIELD_COLUMN(mode), FIELD_COLUMN(max_depth), FIELD_COLUMN(width),
+                             FIELD_COLUMN(height)};
+    for (const ParamSpec& spec : param_catalogue())
+      c.push_back({spec.name, [name = spec.name](const Measurement& m) {
+                     const auto it = m.backend_params.find(name);
+                     return it != m.backend_params.end() ? it->second : "";
+                   }});
+    c.insert(c.end(), {FIELD_COLUMN(cache), FIELD_COLUMN(on_bad_cache), FIELD_COLUMN(requested_frames),
+                       FIELD_COLUMN(warmup), FIELD_COLUMN(budget_s), FIELD_COLUMN(reference),
+                       FIELD_COLUMN(requested_device), FIELD_COLUMN(whitted_passes), FIELD_COLUMN(validate),
+                       FIELD_COLUMN(frames), FIELD_COLUMN(clock), FIELD_COLUMN(ms_median), FIELD_COLUMN(ms_min),
+                       FIELD_COLUMN(ms_max), FIELD_COLUMN(ms_wall_median), FIELD_COLUMN(fps), FIELD_COLUMN(mrays_per_s),
+                       FIELD_COLUMN(rays_per_pixel)});
+    for (uint32_t k = 0; k < COUNTER_KINDS; ++k)
+      c.push_back({counter_columns()[k], [k](const Measurement& m) { return cell(m.per_ray[k]); }});
+    c.insert(c.end(), {FIELD_COLUMN(prepare_ms), FIELD_COLUMN(build_ms), FIELD_COLUMN(structure_bytes),
+                       FIELD_COLUMN(backend_resolved), FIELD_COLUMN(check_size), FIELD_COLUMN(hit_agreement),
+                       FIELD_COLUMN(id_agreement), FIELD_COLUMN(psnr), FIELD_COLUMN(depth_p99),
+                       FIELD_COLUMN(depth_p99_voxels), FIELD_COLUMN(agreement), FIELD_COLUMN(budget_cut),
+                       FIELD_COLUMN(load_avg), FIELD_COLUMN(cpu_steal_pct), FIELD_COLUMN(cpu_other_pct), FIELD_COLUMN(busy),
+                       FIELD_COLUMN(frame_image), FIELD_COLUMN(reference_image), FIELD_COLUMN(diff_image),
+                       FIELD_COLUMN(device), FIELD_COLUMN(driver), FIELD_COLUMN(embree), FIELD_COLUMN(cpu),
+                       FIELD_COLUMN(threads), FIELD_COLUMN(commit)});
+    return c;
+  }();
+  return columns;
+}
+#undef FIELD_COLUMN
 
 // The backends' parameters (renderers/backend_registry.h) stand where "params" does.
 std::vector<std::string> with_backend_params(std::vector<std::string> columns) {
@@ -46,35 +98,27 @@ const std::vector<std::string>& key_columns() {
 
 }  // namespace
 
-const std::vector<std::string>& measurement_columns() {
-  static const std::vector<std::string> columns = with_backend_params({
-      "run_index", "run_id", "table", "scene", "mesh", "triangles", "objects", "overlap", "backend", "mode", "max_depth", "width", "height",
-      "params", "cache", "on_bad_cache", "requested_frames", "warmup", "budget_s", "reference",
-      "requested_device", "whitted_passes", "validate", "frames", "clock", "ms_median", "ms_min", "ms_max",
-      "ms_wall_median", "fps", "mrays_per_s", "rays_per_pixel", "steps_per_ray", "instance_evals_per_ray",
-      "triangle_evals_per_ray", "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray", "field_samples_per_ray", "cell_sets_per_ray", "prepare_ms", "build_ms", "structure_bytes", "backend_resolved", "check_size", "hit_agreement",
-      "id_agreement", "psnr", "depth_p99", "depth_p99_voxels", "agreement", "budget_cut", "load_avg", "cpu_steal_pct", "cpu_other_pct", "busy", "frame_image", "reference_image", "diff_image", "device", "driver", "embree", "cpu", "threads", "commit"});
+const std::array<std::string, COUNTER_KINDS>& counter_columns() {
+  static const std::array<std::string, COUNTER_KINDS> columns = [] {
+    std::array<std::string, COUNTER_KINDS> c;
+    for (uint32_t k = 0; k < COUNTER_KINDS; ++k) c[k] = std::string(counter_names()[k]) + "_per_ray";
+    return c;
+  }();
   return columns;
 }
 
+const std::vector<std::string>& measurement_columns() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const Column& c : csv_columns()) n.push_back(c.name);
+    return n;
+  }();
+  return names;
+}
+
 std::vector<std::string> to_csv_fields(const Measurement& m) {
-  std::vector<std::string> fields = {std::to_string(m.run_index), m.run_id, m.table, m.scene, m.mesh, std::to_string(m.triangles), std::to_string(m.objects), number(m.overlap),
-          m.backend, m.mode, std::to_string(m.max_depth), std::to_string(m.width), std::to_string(m.height),
-          m.cache, m.on_bad_cache, std::to_string(m.requested_frames), std::to_string(m.warmup), number(m.budget_s),
-          m.reference, m.requested_device, m.whitted_passes, m.validate ? "1" : "0", std::to_string(m.frames), m.clock, number(m.ms_median), number(m.ms_min), number(m.ms_max),
-          number(m.ms_wall_median), number(m.fps), number(m.mrays_per_s), number(m.rays_per_pixel),
-          number(m.steps_per_ray), number(m.instance_evals_per_ray), number(m.triangle_evals_per_ray),
-          number(m.aabb_tests_per_ray), number(m.triangle_tests_per_ray), number(m.out_of_steps_per_ray), number(m.field_samples_per_ray), number(m.cell_sets_per_ray),
-          number(m.prepare_ms), number(m.build_ms), number(m.structure_bytes), m.backend_resolved, m.check_size, number(m.hit_agreement),
-          number(m.id_agreement), number(m.psnr), number(m.depth_p99), number(m.depth_p99_voxels), m.agreement, m.budget_cut ? "1" : "0",
-          number(m.load_avg), number(m.cpu_steal_pct), number(m.cpu_other_pct), m.busy ? (*m.busy ? "1" : "0") : "", m.frame_image, m.reference_image, m.diff_image, m.device, m.driver, m.embree,
-          m.cpu, std::to_string(m.threads), m.commit};
-  const std::vector<std::string>& columns = measurement_columns();
-  auto at = fields.begin() + (std::find(columns.begin(), columns.end(), "height") - columns.begin() + 1);
-  for (const ParamSpec& spec : param_catalogue()) {
-    const auto it = m.backend_params.find(spec.name);
-    at = fields.insert(at, it != m.backend_params.end() ? it->second : "") + 1;
-  }
+  std::vector<std::string> fields;
+  for (const Column& c : csv_columns()) fields.push_back(c.write(m));
   return fields;
 }
 

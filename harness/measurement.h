@@ -1,12 +1,14 @@
 #pragma once
 // One benchmark measurement = one CSV row (README, "CSV columns"): the configuration that
 // produced it, its figures, its image agreement with the reference and where it ran.
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "harness/csv.h"
+#include "renderers/work_counters.h"
 
 namespace sdfbench {
 
@@ -38,9 +40,9 @@ struct Measurement {
   unsigned frames = 0;  // timed frames actually run (fewer than requested_frames when the budget cut them)
   std::string clock;  // "device" (GPU timestamps) or "wall"
   double ms_median = 0, ms_min = 0, ms_max = 0, ms_wall_median = 0, fps = 0, mrays_per_s = 0, rays_per_pixel = 0;
-  // work counters of the instrumented check frame, per ray; empty: the backend has no such counter
-  std::optional<double> steps_per_ray, instance_evals_per_ray, triangle_evals_per_ray, aabb_tests_per_ray,
-      triangle_tests_per_ray, out_of_steps_per_ray, field_samples_per_ray, cell_sets_per_ray;
+  // work counters of the instrumented check frame, per ray, by COUNTER_* id (renderers/work_counters.h);
+  // empty: the backend has no such counter
+  std::array<std::optional<double>, COUNTER_KINDS> per_ray;
   double prepare_ms = 0;                                 // renderer prepare(): structure build or cache load + upload
   std::optional<double> build_ms, structure_bytes;       // SDF structures
   std::string backend_resolved;  // what the backend chose for its "auto" parameters (StructureStats::resolved)
@@ -68,6 +70,8 @@ struct Measurement {
 // The columns, the backends' parameters (the registry's catalogue) among them: call after every
 // backend is registered.
 const std::vector<std::string>& measurement_columns();
+// The work counters' columns, by COUNTER_* id: "<name>_per_ray".
+const std::array<std::string, COUNTER_KINDS>& counter_columns();
 // A number as the CSV writes it: 6 significant digits, "inf" and "-inf".
 std::string csv_number(double v);
 std::vector<std::string> to_csv_fields(const Measurement& m);

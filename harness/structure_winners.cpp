@@ -29,12 +29,12 @@ double mrays(const CsvTable& t, size_t row) {
 std::string competing_kind(const std::string& backend, const std::string& hit) {
   const auto& all = backends();
   const auto info = std::find_if(all.begin(), all.end(), [&](const BackendInfo& b) { return b.name == backend; });
-  if (info == all.end() || info->kind == "sdf-cpu") return "";
-  std::string kind = info->kind;
-  if (kind == "sdf-exact" || kind == "sdf-sampled") kind = "sdf:" + (hit == "field" || hit == "thesis" ? hit : "exact");
+  if (info == all.end() || info->kind == BackendKind::SdfCpu) return "";
+  std::string kind = to_string(info->kind);
+  if (is_sdf(info->kind)) kind = "sdf:" + (hit == "field" || hit == "thesis" ? hit : "exact");
   for (const auto& [declared, name] : named_kinds())
     if (declared == kind) return name;
-  return info->kind;
+  return kind;
 }
 
 StructureWinners structure_winners(const std::vector<const CsvTable*>& files,

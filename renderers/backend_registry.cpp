@@ -6,17 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "renderers/bvh/bvh_renderer.h"
-#include "renderers/embree/embree_renderer.h"
-#include "renderers/sdf/sdf_cpu_renderer.h"
-#include "renderers/sdf_vk/sdf_bricks_renderer.h"
-#include "renderers/sdf_vk/sdf_global_renderer.h"
-#include "renderers/sdf_vk/sdf_vk_renderer.h"
-#include "renderers/tri_aabb/tri_aabb_renderer.h"
-#include "renderers/vk_rt/vk_rt_renderer.h"
 #include "util/error.h"
 
 namespace sdfbench {
+
+std::vector<BackendInfo> builtin_backends();  // builtin_backends.cpp
+
 namespace {
 
 struct Registry {
@@ -53,9 +48,7 @@ struct Registry {
 Registry& registry() {
   static Registry r = [] {
     Registry built;
-    for (BackendInfo& info : std::vector<BackendInfo>{embree_backend(), tri_aabb_backend(), bvh_backend(), vk_rt_backend(),
-                                                       sdf_hash_backend(), sdf_octree_backend(), sdf_bricks_backend(),
-                                                       sdf_global_backend(), sdf_cpu_backend()})
+    for (BackendInfo& info : builtin_backends())
       built.add(std::move(info));
     return built;
   }();
@@ -110,6 +103,27 @@ bool owns(const BackendInfo& backend, const std::string& param) {
 }
 
 std::string owners_of(const std::string& param) { return registry().owners_of_in(param); }
+
+std::string backends_with(bool BackendInfo::*capability) {
+  std::vector<std::string> names;
+  for (const BackendInfo& b : backends())
+    if (b.*capability) names.push_back(b.name);
+  return join(names);
+}
+
+std::string to_string(BackendKind kind) {
+  switch (kind) {
+    case BackendKind::CpuBvh: return "cpu-bvh";
+    case BackendKind::Triangles: return "triangles";
+    case BackendKind::ComputeBvh: return "compute-bvh";
+    case BackendKind::DriverRt: return "driver-rt";
+    case BackendKind::SdfExact: return "sdf-exact";
+    case BackendKind::SdfSampled: return "sdf-sampled";
+    case BackendKind::SdfCpu: return "sdf-cpu";
+  }
+  return "?";
+}
+
 
 void check_params_taken(const BackendParams& given, const std::vector<std::string>& run_backends) {
   for (const auto& [name, value] : given.values()) {

@@ -1,50 +1,15 @@
 #pragma once
-// The backends, each described once next to its code (pbrt's central table of self-describing
-// entries): its name, kind, what it supports, the parameters it owns, its factory and how reports
-// pair it with others. The commands' flags and help, the sweep's axes, the CSV's parameter columns
-// and their read-back, `sdfbench backends` and the report's pair tables are all made from this
-// table; a new backend adds its declaration to builtin_backends() (backend_registry.cpp), or a
-// program registers one at run time with register_backend() before it builds its commands
-// (docs/adding-a-backend.md).
-#include <functional>
+// The registry of backends: every declaration (backend.h) by name, and what the commands ask of
+// them. The built-in ones are one table (builtin_backends.cpp); a program registers its own at run
+// time with register_backend() before it builds its commands (docs/adding-a-backend.md).
 #include <map>
-#include <memory>
 #include <string>
 #include <vector>
 
+#include "renderers/backend.h"
 #include "renderers/backend_params.h"
-#include "renderers/renderer.h"
 
 namespace sdfbench {
-
-struct BackendPartner {
-  std::string other;  // the backend this one is set against in the reports' pair tables
-  std::string what;   // the comparison in words ("a sampled per-mesh field against a BVH in a compute kernel")
-};
-
-using BackendFactory = std::function<std::unique_ptr<Renderer>(const BackendOptions&)>;
-// The factory of a renderer class constructed from BackendOptions.
-template <class R>
-BackendFactory factory() {
-  return [](const BackendOptions& options) { return std::make_unique<R>(options); };
-}
-
-struct BackendInfo {
-  std::string name;
-  // The kind of method, for the reports' "which structure wins where": "cpu-bvh" (Embree),
-  // "triangles" (no hierarchy), "compute-bvh", "driver-rt", "sdf-exact" (exact distances),
-  // "sdf-sampled" (a sampled field), "sdf-cpu".
-  std::string kind;
-  std::string summary;            // one line, for help and `sdfbench backends`
-  bool vulkan = true;             // runs on the Vulkan device (--device); else on the CPU
-  std::vector<ParamSpec> params;  // the parameters it owns, with its own defaults and choices
-  bool counters = false;          // instrumented frames count its traversal work
-  bool steps = false;             // ... including sphere-tracing steps per pixel (render --heatmap)
-  bool stores_structure = false;  // builds SDF structures: --cache, build time and bytes in its rows
-  std::vector<BackendPartner> partners;
-  bool in_table = true;           // `sdfbench table` runs it unless --backends says otherwise
-  BackendFactory create;
-};
 
 // Every backend, built-in ones first, in the order help, tables and reports list them.
 const std::vector<BackendInfo>& backends();
@@ -64,6 +29,8 @@ std::string default_table_backends();
 const std::vector<ParamSpec>& param_catalogue();
 const ParamSpec& catalogue_spec(const std::string& name);  // throws Error for an unknown parameter
 bool owns(const BackendInfo& backend, const std::string& param);
+// The backends with a capability, comma-separated ("sdf-hash, sdf-octree, sdf-bricks, sdf-cpu").
+std::string backends_with(bool BackendInfo::*capability);
 std::string owners_of(const std::string& param);  // "sdf-hash, sdf-octree, sdf-cpu"
 
 // Throws Error naming the flag when a given parameter is taken by none of `backends` (it would

@@ -1,6 +1,7 @@
 #pragma once
-// The one interface every backend implements (DESIGN.md, "Backends"): prepare a scene once,
-// then render frames. Backends are declared and created by name in renderers/backend_registry.h.
+// The one interface every backend implements (docs/design.md, "Backends"): prepare a scene once,
+// then render frames. What a backend must do and what it receives, nothing else: a backend is
+// declared in renderers/backend.h and created by name through renderers/backend_registry.h.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -10,7 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "renderers/backend_params.h"
-#include "renderers/sdf/sdf_cache.h"
+#include "renderers/structure_cache_options.h"
 #include "renderers/work_counters.h"
 #include "scenes/scene.h"
 
@@ -27,7 +28,7 @@ struct BackendOptions {
   // whitted on Vulkan: one ray per pixel per dispatch (true) or each pixel's whole ray tree in one
   // invocation (false); unset: passes only on a device with a loop cap (loop_cap_probe.h).
   std::optional<bool> whitted_passes;
-  sdf::CacheOptions cache;  // backends that store a structure: --cache FILE, --on-bad-cache
+  CacheOptions cache;        // backends that store a structure: --cache FILE, --on-bad-cache
   // The backends' own parameters (backend_params.h): on the command side the values given; a
   // backend receives every parameter it owns, resolved (backend_registry.h, resolve_params).
   BackendParams params;

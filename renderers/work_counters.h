@@ -14,8 +14,22 @@ namespace sdfbench {
 // sphere-tracing steps) or cannot see (Embree exposes no traversal counts) stays empty.
 using WorkCounters = std::array<std::optional<uint64_t>, COUNTER_KINDS>;
 
-// "steps", "instance_evals", "triangle_evals", "aabb_tests", "triangle_tests", "out_of_steps", "field_samples", "cell_sets": the CSV's
-// <name>_per_ray columns and what `render --counters` prints.
+// Where a counter's column stands in a report (the markdown sweep tables): with what a ray's march
+// evaluates, after them with the intersection tests, or not at all (a share of the rays, not work).
+enum class CounterGroup { evaluations, tests, rays };
+
+// One counter: renderers/shading/work_counter_list.glsl gives it its id, this its words.
+struct CounterInfo {
+  uint32_t id;         // COUNTER_<ID>
+  const char* name;    // "cell_sets": the CSV's cell_sets_per_ray column, what `render --counters` prints
+  const char* label;   // "cell sets/ray": a report's column title
+  CounterGroup group;
+  const char* doc;     // what is counted: docs/commands.md "Counters" says the same (a test compares)
+};
+
+// Every counter, in id order.
+const std::array<CounterInfo, COUNTER_KINDS>& counter_table();
+// Their names, by id.
 const std::array<const char*, COUNTER_KINDS>& counter_names();
 
 // Which counters a backend has: bit k for COUNTER kind k.

@@ -50,7 +50,7 @@ Aabb implicit_bounds(const std::vector<ImplicitNode>& nodes) {
                     "; nest operations less deeply (list more children in one operation instead)");
       continue;
     }
-    if (stack.size() < 2) throw Error("internal: malformed implicit shape (an operation without two operands)");
+    if (stack.size() < 2) throw InternalError("malformed implicit shape (an operation without two operands)");
     const Aabb b = stack.back();
     stack.pop_back();
     Aabb& a = stack.back();
@@ -60,7 +60,7 @@ Aabb implicit_bounds(const std::vector<ImplicitNode>& nodes) {
       a = Aabb{glm::max(a.min, b.min), glm::min(a.max, b.max)};
     }  // subtraction: inside the first operand
   }
-  if (stack.size() != 1) throw Error("internal: malformed implicit shape (operands left over)");
+  if (stack.size() != 1) throw InternalError("malformed implicit shape (operands left over)");
   const Aabb box = stack.back();
   for (int axis = 0; axis < 3; ++axis) {
     if (!std::isfinite(box.min[axis]) || !std::isfinite(box.max[axis]))

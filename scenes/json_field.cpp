@@ -5,6 +5,7 @@
 
 #include "util/error.h"
 #include "util/input_file.h"
+#include "util/number_text.h"
 
 namespace sdfbench {
 namespace {
@@ -16,12 +17,6 @@ std::string short_path(const std::string& path) {
   if (path.size() <= 2 * kKeep + 40) return path;
   return path.substr(0, kKeep) + "...(" + std::to_string(path.size() - 2 * kKeep) + " characters)..." +
          path.substr(path.size() - kKeep);
-}
-
-std::string format_number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
 }
 
 }  // namespace
@@ -68,19 +63,19 @@ void JsonField::expect_array() const {
 float JsonField::number() const {
   if (!value_.is_number()) fail(std::string("expected a number, got ") + value_.type_name());
   const double v = value_.get<double>();
-  if (!std::isfinite(v) || std::abs(v) > 1e30) fail("number out of range (magnitude at most 1e30), got " + format_number(v));
+  if (!std::isfinite(v) || std::abs(v) > 1e30) fail("number out of range (magnitude at most 1e30), got " + six_digits(v));
   return static_cast<float>(v);
 }
 
 float JsonField::number_in(float lo, float hi) const {
   const float v = number();
-  if (v < lo || v > hi) fail("must be in [" + format_number(lo) + ", " + format_number(hi) + "], got " + format_number(v));
+  if (v < lo || v > hi) fail("must be in [" + six_digits(lo) + ", " + six_digits(hi) + "], got " + six_digits(v));
   return v;
 }
 
 float JsonField::positive() const {
   const float v = number();
-  if (!(v > 0.0f)) fail("must be > 0, got " + format_number(v));
+  if (!(v > 0.0f)) fail("must be > 0, got " + six_digits(v));
   return v;
 }
 

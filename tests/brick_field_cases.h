@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "renderers/sdf/brick_field.h"
+#include "renderers/sdf_bricks/brick_field.h"
 
 namespace sdfbench::test {
 

@@ -133,9 +133,9 @@ TEST_F(OldLavapipe, RenderAndCompareFailAndTableRowsAreMarked) {
   config.scene = "thesis:bunny:10";
   const Measurement ok = runner.run(config, 1);
   EXPECT_EQ(ok.agreement, "ok");
-  EXPECT_EQ(ok.aabb_tests_per_ray, 10.0);  // and the counters' columns filled (primary: every box once per ray)
-  EXPECT_GT(ok.triangle_tests_per_ray.value_or(0.0), 0.0);
-  EXPECT_FALSE(ok.steps_per_ray);
+  EXPECT_EQ(ok.per_ray[COUNTER_AABB_TESTS], 10.0);  // and the counters' columns filled (primary: every box once per ray)
+  EXPECT_GT(ok.per_ray[COUNTER_TRIANGLE_TESTS].value_or(0.0), 0.0);
+  EXPECT_FALSE(ok.per_ray[COUNTER_STEPS]);
 }
 
 }  // namespace

@@ -48,7 +48,7 @@ TEST_P(SdfVkVsEmbree, ImagesAgreeUnderValidation) {
 std::vector<std::string> vulkan_sdf_backends() {
   std::vector<std::string> names;
   for (const BackendInfo& b : backends())
-    if (b.vulkan && b.kind.rfind("sdf-", 0) == 0) names.push_back(b.name);
+    if (b.vulkan && is_sdf(b.kind)) names.push_back(b.name);
   return names;
 }
 

@@ -1,11 +1,14 @@
 // Work counters of instrumented frames (docs/commands.md "Counters"): sdf-cpu and the Vulkan kernel count
-// the same work, the counts are plausible, and timed frames count nothing.
+// the same work, the counts are plausible, timed frames count nothing, and the docs list the counters.
+#include <filesystem>
+#include <fstream>
 #include <numeric>
 #include <random>
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "harness/measurement.h"
 #include "renderers/backend_registry.h"
 #include "renderers/renderer.h"
 #include "renderers/sdf/traced_distance.h"
@@ -103,6 +106,38 @@ TEST(WorkCounters, EmbreeAndTimedFramesReportNone) {
   const FrameResult timed = sdf->render(FrameRequest{kWidth, kHeight, RenderMode::Primary, true});
   for (const std::optional<uint64_t>& c : timed.counters) EXPECT_FALSE(c);
   EXPECT_TRUE(timed.images.steps.empty());
+}
+
+// docs/commands.md documents the counter table as it is: its "Counters" table has one row per
+// counter, in id order, saying what renderers/work_counters.cpp's entry says is counted, and its CSV
+// columns list the counters' columns in the CSV's order.
+TEST(WorkCounters, DocsListEveryCounterAsTheTableHasIt) {
+  const std::filesystem::path doc = std::filesystem::path(SDFBENCH_DATA_DIR).parent_path() / "docs" / "commands.md";
+  std::ifstream in(doc);
+  ASSERT_TRUE(in) << doc;
+  std::string per_ray_row;  // the CSV columns' row of the counters: "| steps_per_ray, ..., cell_sets_per_ray |"
+  for (const std::string& column : counter_columns()) per_ray_row += (per_ray_row.empty() ? "| " : ", ") + column;
+  per_ray_row += " |";
+  std::vector<std::string> names, docs;  // the Counters table's counter and "what is counted" cells
+  bool in_table = false, has_per_ray_row = false;
+  for (std::string line; std::getline(in, line);) {
+    has_per_ray_row |= line.rfind(per_ray_row, 0) == 0;
+    if (line == "| counter | what is counted | backends |") {
+      in_table = true;
+    } else if (in_table && line.rfind("| ", 0) == 0) {
+      const size_t name_end = line.find(" | "), doc_end = line.find(" | ", name_end + 3);
+      ASSERT_NE(doc_end, std::string::npos) << line;
+      names.push_back(line.substr(2, name_end - 2));
+      docs.push_back(line.substr(name_end + 3, doc_end - name_end - 3));
+    } else if (line.rfind("|---", 0) != 0) {
+      in_table = false;
+    }
+  }
+  std::vector<std::string> table_names;
+  for (const CounterInfo& c : counter_table()) table_names.push_back(c.name);
+  ASSERT_EQ(names, table_names) << doc << ": the \"Counters\" table's rows are not renderers/work_counters.cpp's counters";
+  for (const CounterInfo& c : counter_table()) EXPECT_EQ(docs[c.id], c.doc) << doc << ": what " << c.name << " counts";
+  EXPECT_TRUE(has_per_ray_row) << doc << ": no CSV column row " << per_ray_row;
 }
 
 // The shortcuts change the work, never the distance, instance or triangle.

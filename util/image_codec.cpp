@@ -63,7 +63,7 @@ std::vector<unsigned char> encode_image(const FloatImage& image, ImageFormat for
   const size_t channels = image.channel_names.size();
   if (image.width < 1 || image.height < 1 || channels < 1 ||
       image.pixels.size() != size_t(image.width) * image.height * channels)
-    throw Error("internal: an image to encode has no pixels or the wrong number of values");
+    throw InternalError("an image to encode has no pixels or the wrong number of values");
   if (format != ImageFormat::exr && channels > 4)
     throw Error("cannot write " + name + ": " + std::to_string(channels) + " channels need an EXR file (use .exr)");
   return guarded("cannot write " + name, [&] { return format == ImageFormat::exr ? codec::exr_encode(image) : codec::stb_encode(image, format); });

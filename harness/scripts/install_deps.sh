@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs every build and run dependency from Debian's packages (DESIGN.md, "Dependencies"), by
+# Installs every build and run dependency from Debian's packages (docs/design.md, "Dependencies"), by
 # release:
 #   Debian 12 (bookworm): Mesa's Vulkan drivers come from Debian's bookworm-backports suite: its
 #     lavapipe (Mesa 25) has no per-invocation loop cap and has the ray-tracing extensions; Debian

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "renderers/backend_registry.h"
+#include "renderers/backend.h"
 #include "renderers/bvh/bvh_builder.h"
 #include "util/error.h"
 
@@ -110,7 +110,7 @@ void BvhRenderer::prepare(const Scene& scene) {
 }
 
 BackendInfo bvh_backend() {
-  return {.name = "bvh", .kind = "compute-bvh",
+  return {.name = "bvh", .kind = BackendKind::ComputeBvh,
           .summary = "a two-level SAH BVH (Embree's builder) traversed in a Vulkan compute kernel",
           .counters = true, .create = factory<BvhRenderer>()};
 }

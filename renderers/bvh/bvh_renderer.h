@@ -47,8 +47,5 @@ class BvhRenderer : public VulkanRenderer {
   VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
 };
 
-// Its entry in the backend registry (renderers/backend_registry.h).
-struct BackendInfo;
-BackendInfo bvh_backend();
 
 }  // namespace sdfbench

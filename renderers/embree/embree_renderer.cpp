@@ -1,11 +1,47 @@
-#include "renderers/embree/embree_renderer.h"
+#include <memory>
+#include <vector>
 
-#include "renderers/backend_registry.h"
+#include <glm/glm.hpp>
+
+#include "renderers/backend.h"
 #include "renderers/cpu_frame.h"
+#include "renderers/embree/embree_api.h"
+#include "renderers/renderer.h"
+#include "renderers/shading/gpu_types.h"
 #include "util/cpu_info.h"
 #include "util/error.h"
 
 namespace sdfbench {
+
+// CPU reference: Embree BVH, one scene per mesh plus one instance each, TBB over tiles with
+// an explicit thread count; shading is the GLSL program compiled as C++ (cpu_shading.h).
+class EmbreeRenderer : public Renderer {
+ public:
+  explicit EmbreeRenderer(const BackendOptions& options);
+  ~EmbreeRenderer() override;
+  std::string name() const override { return "embree"; }
+  std::string device_name() const override;
+  std::string driver_name() const override;
+  void prepare(const Scene& scene) override;
+  FrameResult render(const FrameRequest& request) override;
+
+  // The backend's two queries, as the shading program calls them. Embree exposes no traversal
+  // counts: instrumented frames leave `counts` alone and report no counters.
+  bool closest_hit(shading::Ray ray, float tmax, shading::Hit& hit, shading::PixelCounts* counts) const;
+  bool any_hit(shading::Ray ray, float tmax, shading::PixelCounts* counts) const;
+  float mesh_hit_tolerance() const { return 0.0f; }  // ray-triangle hits lie on the triangle
+
+ private:
+  void check_device(const char* what) const;
+  void release_scene();
+
+  unsigned threads_;
+  RTCDevice device_ = nullptr;
+  RTCScene top_ = nullptr;
+  std::vector<RTCScene> mesh_scenes_;
+  const Scene* scene_ = nullptr;
+  std::vector<glm::mat3> normal_to_world_;  // per instance
+};
 
 EmbreeRenderer::EmbreeRenderer(const BackendOptions& options) : threads_(cpu_thread_count(options)) {
   const std::string config = "threads=" + std::to_string(threads_);
@@ -113,12 +149,12 @@ bool EmbreeRenderer::any_hit(shading::Ray ray, float tmax, shading::PixelCounts*
 }
 
 FrameResult EmbreeRenderer::render(const FrameRequest& request) {
-  if (!scene_) throw Error("internal: render before prepare");
+  if (!scene_) throw InternalError("render before prepare");
   return render_cpu_frame(*this, *scene_, make_shading_inputs(*scene_, request), request, threads_, 0u);
 }
 
 BackendInfo embree_backend() {
-  return {.name = "embree", .kind = "cpu-bvh",
+  return {.name = "embree", .kind = BackendKind::CpuBvh,
           .summary = "Embree on the CPU: the reference every image is checked against",
           .vulkan = false, .create = factory<EmbreeRenderer>()};
 }

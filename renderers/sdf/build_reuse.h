@@ -12,8 +12,8 @@
 #include <functional>
 #include <vector>
 
-#include "renderers/sdf/brick_field.h"
-#include "renderers/sdf/global_field.h"
+#include "renderers/sdf_bricks/brick_field.h"
+#include "renderers/sdf_global/global_field.h"
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "renderers/sdf/scene_hash.h"
 #include "scenes/scene.h"

@@ -3,8 +3,8 @@
 // name them in messages.
 #include <sstream>
 
-#include "renderers/sdf/brick_field.h"
-#include "renderers/sdf/global_field.h"
+#include "renderers/sdf_bricks/brick_field.h"
+#include "renderers/sdf_global/global_field.h"
 
 namespace sdfbench::sdf {
 

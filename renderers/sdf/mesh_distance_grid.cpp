@@ -27,7 +27,7 @@
 //
 // Lower bounds on dist(T, B) compared with U. Each is the gap between the projections of T and B
 // on a unit axis u, which never exceeds the distance between the sets (|x - y| >= u.(x - y)):
-//  (a) sphere rule (DESIGN.md): dist(T, B) >= dist(T, c) - h, as every point of B is within h of c.
+//  (a) sphere rule (docs/design.md, "The SDF structures"): dist(T, B) >= dist(T, c) - h, as every point of B is within h of c.
 //  (b) centre axis: p* = closest point of T to c, u = (p* - c) / |p* - c|. T is convex, so T lies
 //      in {x : u.x >= u.p*}; B lies in {y : u.y <= u.c + r_u}, r_u = (s/2)(|u_x|+|u_y|+|u_z|) for
 //      cell size s. Gap: dist(T, c) - r_u >= (a) since r_u <= h.

@@ -1,5 +1,5 @@
 #pragma once
-// The per-mesh exact distance grid (DESIGN.md "The SDF structures", thesis 5.1): a uniform grid
+// The per-mesh exact distance grid (docs/design.md, "The SDF structures"; thesis 5.1): a uniform grid
 // around one mesh whose every cell lists the triangles that can be the closest one to some point
 // of the cell, so that inside the grid the minimum over a cell's list *is* the unsigned distance
 // to the mesh (not the thesis' heuristic approximation). Built once per mesh, shared by all of
@@ -33,7 +33,7 @@ namespace sdfbench::sdf {
 // tight with S = 1: 28/35/11/6.8, S = 2: 19/22/8.3/5.5, S = 3: 17/19/7.7/5.1.
 enum class MeshGridRule {
   tight,   // separating-axis bounds against the cell's (and its sub-boxes') corner reach (default)
-  sphere,  // dist(T, centre) <= d_c + 2h only: DESIGN.md's cheap rule, kept for comparison
+  sphere,  // dist(T, centre) <= d_c + 2h only: docs/design.md's cheap rule, kept for comparison
 };
 
 // Default memory cap of one SDF structure (a mesh grid's cell lists, the scene hash's octrees):
@@ -63,7 +63,7 @@ struct MeshGridParams {
   bool scale_with_triangles = true;  // the rule above (--fixed-grid: off); only with cells_per_extent
 };
 
-// DESIGN.md's exact grid: each cell lists every triangle that can be the closest one to some point of the cell.
+// The exact grid (docs/design.md, "The SDF structures"): each cell lists every triangle that can be the closest one to some point of the cell.
 struct MeshDistanceGrid {
   glm::vec3 origin{0.0f};  // min corner of the grid box
   float cell_size = 0.0f;

@@ -77,7 +77,7 @@ class RegionLister {
   }
 
  private:
-  // Exact rule (DESIGN.md): with c the centre, h the half-diagonal and D >= d(c) the scene
+  // Exact rule (docs/design.md, "The SDF structures"): with c the centre, h the half-diagonal and D >= d(c) the scene
   // distance at c, an instance closest to some p in the region has dist(c) <= d(p) + h <=
   // d(c) + 2h <= D + 2h; so listing every instance whose lower bound at c is <= D + 2h is exact.
   std::vector<uint32_t> exact(const Aabb& region, const std::vector<uint32_t>& candidates) const {

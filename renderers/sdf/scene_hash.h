@@ -8,8 +8,8 @@
 
 #include <glm/glm.hpp>
 
-#include "renderers/sdf/brick_field.h"
-#include "renderers/sdf/global_field.h"
+#include "renderers/sdf_bricks/brick_field.h"
+#include "renderers/sdf_global/global_field.h"
 #include "renderers/sdf/mesh_distance_grid.h"
 #include "renderers/sdf/structure_request.h"
 #include "scenes/scene.h"
@@ -20,7 +20,7 @@ namespace sdfbench::sdf {
 inline constexpr uint64_t kMaxHashCells = uint64_t(1) << 26;
 
 enum class ListRule {
-  Exact,   // DESIGN.md: every instance that can be the closest to some point of the region
+  Exact,   // docs/design.md, "The SDF structures": every instance that can be the closest to some point of the region
   Thesis,  // the thesis' approximate Voronoi "influence AABB" (kept for comparison)
 };
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "renderers/sdf/scene_hash.h"
+#include "renderers/structure_cache_options.h"
 #include "scenes/scene.h"
 
 namespace sdfbench::sdf {
@@ -36,15 +37,9 @@ bool write_sdf_cache(const std::filesystem::path& path, const Scene& scene, cons
 SceneSdf load_sdf_cache(const std::filesystem::path& path, const Scene& scene, const MeshGridParams& mesh_params,
                         const SceneHashParams& hash_params, const StructureRequests& extras = {});
 
-enum class BadCachePolicy {
-  Refuse,   // an invalid or stale cache is an error (default: never silently pay a rebuild)
-  Rebuild,  // rebuild and overwrite it
-};
-
-struct CacheOptions {
-  std::string path;  // empty: no cache, always build in memory
-  BadCachePolicy on_bad = BadCachePolicy::Refuse;
-};
+// The cache settings every backend receives (renderers/structure_cache_options.h).
+using sdfbench::BadCachePolicy;
+using sdfbench::CacheOptions;
 
 // The one entry point for backends: no path -> build; a missing file -> build and write it; a
 // valid matching file -> load it (skipping the build); an invalid or stale file -> the policy;

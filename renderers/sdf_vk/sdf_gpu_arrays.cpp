@@ -122,7 +122,7 @@ SdfGpuArrays flatten_for_gpu(const Scene& scene, const sdf::SceneSdf& sdf, const
   out.params.options = glm::vec4(tracing.over_relax, 0.0f, 0.0f, 0.0f);
   const sdf::TraceCulling culling = sdf::make_trace_culling(scene, sdf);
   if (tracing.cell_bound && leaf_lists == LeafLists::overlapping_first)
-    throw Error("internal: --cell-bound and overlap-first lists share a word");
+    throw InternalError("--cell-bound and overlap-first lists share a word");
   flatten_hash(hash, tracing.cell_bound ? &culling.instance_boxes : nullptr,
                leaf_lists == LeafLists::overlapping_first ? &culling.instance_boxes : nullptr, out);
 

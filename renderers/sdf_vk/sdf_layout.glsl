@@ -1,6 +1,6 @@
 // How the sdf-hash / sdf-octree kernels see the SDF structures, shared by GLSL and C++.
 // The large arrays live in texel buffers (lavapipe serves divergent texel fetches ~12x faster
-// than divergent storage-buffer reads, DESIGN.md); records that mix integers and floats are
+// than divergent storage-buffer reads, docs/design.md, "lavapipe, measured"); records that mix integers and floats are
 // RGBA32UI texels holding float bits, so no float conversion can touch the integers.
 #ifndef SDFBENCH_SDF_LAYOUT_GLSL
 #define SDFBENCH_SDF_LAYOUT_GLSL

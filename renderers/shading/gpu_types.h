@@ -7,6 +7,16 @@
 
 #include <glm/glm.hpp>
 
+#include "work_counter_list.glsl"
+
+namespace sdfbench {
+// The work counters' COUNTER_<ID> and COUNTER_KINDS, as shading_types.glsl declares them for the GLSL.
+#define DECLARE_WORK_COUNTER(ID, index) inline constexpr uint32_t COUNTER_##ID = index;
+WORK_COUNTERS(DECLARE_WORK_COUNTER)
+#undef DECLARE_WORK_COUNTER
+inline constexpr uint32_t COUNTER_KINDS = 0u WORK_COUNTERS(WORK_COUNTER_PLUS_ONE);
+}  // namespace sdfbench
+
 namespace sdfbench::shading {
 using namespace glm;
 #include "shading_types.glsl"

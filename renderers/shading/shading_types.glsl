@@ -29,17 +29,16 @@
 // stack never holds more than one pending ray per depth plus the pair just pushed.
 #define STACK_SIZE (MAX_DEPTH_LIMIT + 1u)
 
-// Work counters of instrumented frames (docs/commands.md "Counters"): per pixel, summed over all its rays,
-// COUNTER_KINDS of them per pixel in this order.
-#define COUNTER_STEPS 0u           // sphere-tracing steps (scene distance queries)
-#define COUNTER_INSTANCE_EVALS 1u  // instance distances: a mesh grid queried in an instance's frame
-#define COUNTER_TRIANGLE_EVALS 2u  // point-triangle distances
-#define COUNTER_AABB_TESTS 3u      // tri-aabb: ray-box slab tests; SDF: instance boxes tested to skip an instance
-#define COUNTER_TRIANGLE_TESTS 4u  // ray-triangle intersection tests (Möller-Trumbore)
-#define COUNTER_OUT_OF_STEPS 5u    // SDF: rays whose march ended by --max-steps
-#define COUNTER_FIELD_SAMPLES 6u   // sdf-bricks: trilinear samples of a brick field (each 8 texels, or 8 coarse ones)
-#define COUNTER_CELL_SETS 7u       // sdf-global --exact-lists triangles: reference cells whose set was tested
-#define COUNTER_KINDS 8u
+// Work counters of instrumented frames (docs/commands.md "Counters"): per pixel, summed over all its
+// rays, COUNTER_KINDS of them per pixel, COUNTER_<ID> each, as work_counter_list.glsl lists them.
+// The C++ declares the same constants in namespace sdfbench, where their users are (gpu_types.h).
+#ifndef __cplusplus
+#include "work_counter_list.glsl"
+#define DECLARE_WORK_COUNTER(ID, index) const uint COUNTER_##ID = index;
+WORK_COUNTERS(DECLARE_WORK_COUNTER)
+#undef DECLARE_WORK_COUNTER
+const uint COUNTER_KINDS = 0u WORK_COUNTERS(WORK_COUNTER_PLUS_ONE);
+#endif
 #define COUNTERS_BINDING 32  // the per-pixel counters buffer: past every backend's bindings (8 and up)
 
 #define NO_INSTANCE 0xffffffffu     // the ray escaped to the sky

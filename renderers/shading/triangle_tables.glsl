@@ -2,7 +2,7 @@
 // every mesh's triangles concatenated (in the spatial order triangle_buffers.cpp gives them),
 // 3 texels per triangle, and an instance table. Texel
 // buffers: lavapipe serves divergent texel fetches far faster than divergent storage-buffer
-// reads (DESIGN.md, measured).
+// reads (docs/design.md, "lavapipe, measured").
 #ifndef SDFBENCH_TRIANGLE_TABLES_GLSL
 #define SDFBENCH_TRIANGLE_TABLES_GLSL
 #include "triangle_instance.glsl"

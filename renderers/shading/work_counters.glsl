@@ -4,7 +4,9 @@
 // empty, so timed frames pay nothing.
 #if COUNTERS
 layout(std430, binding = COUNTERS_BINDING) buffer CounterBlock { uint pixel_counters[]; };  // COUNTER_KINDS per pixel
-uint counted[COUNTER_KINDS] = uint[COUNTER_KINDS](0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u);
+#define WORK_COUNTER_ZERO(ID, index) 0u,
+uint counted[COUNTER_KINDS] = {WORK_COUNTERS(WORK_COUNTER_ZERO)};  // an initialiser, not a loop (docs/limits.md "The loop limit")
+#undef WORK_COUNTER_ZERO
 #define COUNT(kind, n) counted[kind] += (n)
 #else
 #define COUNT(kind, n)

@@ -1,12 +1,42 @@
-#include "renderers/vk_rt/vk_rt_renderer.h"
-
 #include <chrono>
+#include <memory>
 
-#include "renderers/backend_registry.h"
+#include "renderers/backend.h"
+#include "renderers/renderer.h"
+#include "renderers/vk_rt/acceleration_structures.h"
+#include "renderers/vk_rt/rt_functions.h"
 #include "renderers/vk_rt/rt_pipeline.h"
+#include "renderers/vulkan/triangle_buffers.h"
+#include "renderers/vulkan/vulkan_context.h"
+#include "renderers/vulkan/vulkan_frame_runner.h"
 #include "util/error.h"
 
 namespace sdfbench {
+
+// The driver's ray tracing (VK_KHR_ray_tracing_pipeline): its acceleration structures, traversed
+// by hardware or by the driver's software path, shaded like every other backend. The work counters
+// are n/a: the traversal is the driver's.
+class VkRtRenderer : public Renderer {
+ public:
+  // Throws Error "vk-rt: device 'X' lacks ..." on a device without ray-tracing pipelines.
+  explicit VkRtRenderer(const BackendOptions& options);
+  std::string name() const override { return "vk-rt"; }
+  std::string device_name() const override { return context_->info().name; }
+  std::string driver_name() const override { return context_->info().driver + " " + context_->info().driver_info; }
+  void prepare(const Scene& scene) override;
+  FrameResult render(const FrameRequest& request) override { return runner_->run(request); }
+  uint32_t validation_messages() const override { return context_->validation_messages(); }
+  std::optional<StructureStats> structure_stats() const override { return stats_; }
+
+ private:
+  // Destroyed in reverse: the runner (and its pipelines) before the structures and tables it binds.
+  std::unique_ptr<VulkanContext> context_;
+  std::unique_ptr<RayTracingFunctions> functions_;
+  std::unique_ptr<TriangleBuffers> tables_;
+  std::unique_ptr<AccelerationStructures> structures_;
+  std::unique_ptr<VulkanFrameRunner> runner_;
+  std::optional<StructureStats> stats_;
+};
 
 VkRtRenderer::VkRtRenderer(const BackendOptions& options) {
   VulkanContext::Options context_options{options.device, options.validation};
@@ -41,7 +71,7 @@ void VkRtRenderer::prepare(const Scene& scene) {
 }
 
 BackendInfo vk_rt_backend() {
-  return {.name = "vk-rt", .kind = "driver-rt",
+  return {.name = "vk-rt", .kind = BackendKind::DriverRt,
           .summary = "the driver's own ray tracing (VK_KHR_ray_tracing_pipeline)",
           .create = factory<VkRtRenderer>()};
 }

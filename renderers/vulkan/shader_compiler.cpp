@@ -37,7 +37,7 @@ EShLanguage stage_of(const std::string& name) {
   if (ends_with(".rgen")) return EShLangRayGen;
   if (ends_with(".rchit")) return EShLangClosestHit;
   if (ends_with(".rmiss")) return EShLangMiss;
-  throw Error("internal: no shader stage for '" + name + "'");
+  throw InternalError("no shader stage for '" + name + "'");
 }
 
 }  // namespace
@@ -48,7 +48,7 @@ std::vector<uint32_t> compile_shader(const std::string& name, const std::string&
 
   const auto& shaders = embedded_shaders();
   auto it = shaders.find(name);
-  if (it == shaders.end()) throw Error("internal: no embedded shader named '" + name + "'");
+  if (it == shaders.end()) throw InternalError("no embedded shader named '" + name + "'");
 
   const EShLanguage stage = stage_of(name);
   glslang::TShader shader(stage);

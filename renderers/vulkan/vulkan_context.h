@@ -1,5 +1,5 @@
 #pragma once
-// Instance, device and queue for compute (DESIGN.md: lavapipe by default, --device picks another).
+// Instance, device and queue for compute (docs/design.md, "Backends": lavapipe by default, --device picks another).
 #include <atomic>
 #include <string>
 #include <vector>

@@ -168,7 +168,7 @@ void VulkanFrameRunner::submit(const std::vector<glm::uvec4>& launches, FrameRes
 }
 
 FrameResult VulkanFrameRunner::run(const FrameRequest& request) {
-  if (!scene_) throw Error("internal: render before prepare");
+  if (!scene_) throw InternalError("render before prepare");
   const bool passes = request.mode == RenderMode::Whitted && whitted_passes_;
   prepare_outputs(request.width, request.height, request.mode, request.counters);
   const ShadingInputs inputs = make_shading_inputs(*scene_, request);
@@ -191,7 +191,7 @@ FrameResult VulkanFrameRunner::run(const FrameRequest& request) {
       submit({glm::uvec4(tiles[i].x, tiles[i].y, pass, kLoopProbeTrips)}, result);
       states_.read(&pending, sizeof(pending));
     }
-    if (pending != 0) throw Error("internal: whitted passes did not finish within " + std::to_string(max_passes));
+    if (pending != 0) throw InternalError("whitted passes did not finish within " + std::to_string(max_passes));
   }
 
   const size_t pixels = static_cast<size_t>(request.width) * request.height;

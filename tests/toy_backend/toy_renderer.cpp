@@ -17,7 +17,7 @@ class ToyRenderer : public Renderer {
   std::string driver_name() const override { return "toy brute-force tracer"; }
   void prepare(const Scene& scene) override { scene_ = &scene; }
   FrameResult render(const FrameRequest& request) override {
-    if (!scene_) throw Error("internal: render before prepare");
+    if (!scene_) throw InternalError("render before prepare");
     return render_cpu_frame(*this, *scene_, make_shading_inputs(*scene_, request), request, threads_, 0u);
   }
 
@@ -64,7 +64,7 @@ class ToyRenderer : public Renderer {
 BackendInfo toy_backend() {
   BackendInfo info;
   info.name = "toy";
-  info.kind = "triangles";
+  info.kind = BackendKind::Triangles;
   info.summary = "a test's toy: every triangle of every instance for every ray, on the CPU";
   info.vulkan = false;
   info.params = {{"toy_order", ParamKind::Choice, "forward",

@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "renderers/sdf/brick_field.h"
+#include "renderers/sdf_bricks/brick_field.h"
 #include "renderers/sdf/cache/section_reader.h"
 #include "renderers/sdf/structure_request.h"
 

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "renderers/sdf/brick_field.h"
+#include "renderers/sdf_bricks/brick_field.h"
 #include "scenes/scene.h"
 
 namespace sdfbench::sdf {

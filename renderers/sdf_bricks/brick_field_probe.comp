@@ -3,7 +3,7 @@
 #extension GL_EXT_samplerless_texture_functions : require
 // The sampled fields' sampling code run on the device at given points, through the kernels' own
 // fetch path (BRICK_SAMPLER: the hardware's filter), so that a test can hold what the device
-// returns against brute force (tests/brick_sampler_probe_test.cpp). Not used by any backend.
+// returns against brute force (renderers/sdf_bricks/brick_sampler_probe_test.cpp). Not used by any backend.
 #include "shading_types.glsl"
 #include "sdf_layout.glsl"
 

@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
-// sdf-global (issue 29): one sampled field over the whole scene (renderers/sdf/global_field.h), as
+// sdf-global (issue 29): one sampled field over the whole scene (renderers/sdf_global/global_field.h), as
 // Unreal Engine 5's global distance field: a step is one sample of it (the coarse level's in an
 // empty brick, the brick's trilinear in a stored one), whatever the number of instances.
 // Hits: the field's bound is a true lower bound on the distance to every surface (brick_sample.glsl),

@@ -1,11 +1,12 @@
-#include "renderers/sdf_vk/sdf_bricks_renderer.h"
+#include "renderers/sdf_bricks/sdf_bricks_renderer.h"
 
 #include <algorithm>
 #include <iostream>
 
-#include "renderers/backend_registry.h"
+#include "renderers/backend.h"
+#include "renderers/sdf/sdf_cache.h"
 #include "renderers/sdf/sdf_params.h"
-#include "renderers/sdf_vk/brick_gpu_arrays.h"
+#include "renderers/sdf_bricks/brick_gpu_arrays.h"
 #include "renderers/sdf_vk/sdf_gpu_arrays.h"
 #include "util/error.h"
 
@@ -66,7 +67,7 @@ void SdfBricksRenderer::prepare(const Scene& scene) {
 BackendInfo sdf_bricks_backend() {
   BackendInfo info;
   info.name = "sdf-bricks";
-  info.kind = "sdf-sampled";
+  info.kind = BackendKind::SdfSampled;
   info.summary = "per-mesh sampled brick fields (UE5's mesh distance fields) on the thesis' hash and octree lists";
   // The thesis' structure for the lists, the mesh grids for exact hits; no cell bounds (its own
   // walk skips empty leaves) and no over-relaxation (it steps by a bound of its field).
@@ -81,7 +82,7 @@ BackendInfo sdf_bricks_backend() {
                          "min: the thesis' per-step minimum over the leaf's instances",
                          "sampled fields (sdf-bricks, sdf-global)", {"instance", "min"}});
   info.params.push_back(sdf::sdf_params({"max_structure_mb"}, {"exact"}).front());
-  info.counters = info.steps = info.stores_structure = true;
+  info.counters = info.steps = info.stores_structure = info.scene_hash = true;
   info.partners = {{"sdf-octree", "a sampled per-mesh field against the exact one"},
                    {"bvh", "a sampled per-mesh field against a BVH in a compute kernel"}};
   info.create = factory<SdfBricksRenderer>();

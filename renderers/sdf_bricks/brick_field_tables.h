@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "renderers/renderer.h"
-#include "renderers/sdf_vk/brick_gpu_arrays.h"
+#include "renderers/sdf_bricks/brick_gpu_arrays.h"
 #include "renderers/sdf_vk/sdf_gpu_arrays.h"
 #include "renderers/vulkan/descriptor_set.h"
 #include "renderers/vulkan/gpu_buffer.h"

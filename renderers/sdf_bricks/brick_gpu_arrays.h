@@ -1,5 +1,5 @@
 #pragma once
-// The brick fields of a scene's meshes (renderers/sdf/brick_field.h) flattened into the texel
+// The brick fields of a scene's meshes (renderers/sdf_bricks/brick_field.h) flattened into the texel
 // buffers the sdf-bricks kernel reads (layout in brick_sample.glsl), and read back on the CPU
 // by the kernel's own sampling code (BrickCpuSampler) for the tests.
 #include <cstdint>
@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "renderers/sdf/brick_field.h"
+#include "renderers/sdf_bricks/brick_field.h"
 #include "renderers/shading/gpu_types.h"
 
 namespace sdfbench {

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 // sdf-bricks (issue 28): the thesis' scene hash and octree lists, exactly as sdf-octree reads them,
-// but a mesh's distance comes from its sampled brick field (renderers/sdf/brick_field.h) instead of
+// but a mesh's distance comes from its sampled brick field (renderers/sdf_bricks/brick_field.h) instead of
 // its exact per-cell triangle lists. Two ways to use the lists:
 //  - per instance (default, as Unreal Engine 5 traces mesh distance fields): the ray walks the
 //    leaves it crosses; in each, every listed instance whose box the ray's segment meets is

@@ -1,5 +1,5 @@
 // sdf-global's exact hits through triangle references (--exact-lists triangles;
-// renderers/sdf/cell_triangle_refs.h): a stored brick's reference cells along the ray, each
+// renderers/sdf_global/cell_triangle_refs.h): a stored brick's reference cells along the ray, each
 // cell's set of (instance, triangle) pairs tested once over the ray's part in the cell. Needs
 // sdf_exact_crossing.glsl, brick_trace.glsl and the kernel's brick_exit() and march_to_near()
 // before it;

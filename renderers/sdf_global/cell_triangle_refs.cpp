@@ -1,4 +1,4 @@
-#include "renderers/sdf/cell_triangle_refs.h"
+#include "renderers/sdf_global/cell_triangle_refs.h"
 
 #include <algorithm>
 #include <atomic>
@@ -13,7 +13,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
-#include "renderers/sdf/triangle_box_overlap.h"
+#include "renderers/sdf_global/triangle_box_overlap.h"
 #include "util/error.h"
 #include "util/input_file.h"
 #include "util/progress.h"

@@ -1,4 +1,4 @@
-#include "renderers/sdf_vk/brick_gpu_arrays.h"
+#include "renderers/sdf_bricks/brick_gpu_arrays.h"
 
 #include <algorithm>
 #include <bit>
@@ -27,7 +27,7 @@ BrickGpuArrays flatten_brick_fields(const std::vector<sdf::BrickField>& fields) 
   BrickGpuArrays out;
   if (!fields.empty()) out.format = fields.front().format;
   for (const sdf::BrickField& field : fields) {
-    if (field.format != out.format) throw Error("internal: brick fields of one scene in different formats");
+    if (field.format != out.format) throw InternalError("brick fields of one scene in different formats");
     const uint32_t first_brick = index32(out.slots.size(), "bricks");
     const uint32_t first_slot = index32(out.atlas.size() / (sdf::kBrickSamples * sdf::bytes_per_sample(out.format)), "stored bricks");
     const uint32_t first_coarse = index32(out.coarse.size(), "coarse samples");

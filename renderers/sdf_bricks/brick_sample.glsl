@@ -1,4 +1,4 @@
-// Sampling a per-mesh brick field (renderers/sdf/brick_field.h), shared by the sdf-bricks kernel
+// Sampling a per-mesh brick field (renderers/sdf_bricks/brick_field.h), shared by the sdf-bricks kernel
 // and its CPU reference (brick_cpu_sampler.h), so that the tests check the kernel's own
 // arithmetic. The includer defines, before including this file:
 //   uvec4 brick_record(int i)  texel i of the field records (BRICK_FIELD_TEXELS per mesh)

@@ -3,16 +3,16 @@
 #include <string>
 
 #include "renderers/renderer.h"
-#include "renderers/sdf/global_field.h"
+#include "renderers/sdf_global/global_field.h"
 #include "renderers/sdf/sphere_tracer.h"
-#include "renderers/sdf_vk/brick_field_tables.h"
+#include "renderers/sdf_bricks/brick_field_tables.h"
 #include "renderers/sdf_vk/sdf_gpu_tables.h"
 #include "renderers/vulkan/vulkan_frame_runner.h"
 #include "renderers/vulkan/vulkan_renderer.h"
 
 namespace sdfbench {
 
-// sdf-global (issue 29): one sampled field over the whole scene (renderers/sdf/global_field.h),
+// sdf-global (issue 29): one sampled field over the whole scene (renderers/sdf_global/global_field.h),
 // sphere-traced in sdf_global.comp with one field sample per step whatever the number of
 // instances; near a surface the instances its brick lists are intersected exactly (the mesh
 // grids' triangle lists), or --hit field takes the field's own crossing. Its parameters
@@ -42,8 +42,5 @@ class SdfGlobalRenderer : public VulkanRenderer {
 // Error for values outside their ranges.
 sdf::GlobalFieldParams global_field_params(const BackendParams& params, uint64_t max_bytes);
 
-// Its entry in the backend registry (renderers/backend_registry.h).
-struct BackendInfo;
-BackendInfo sdf_global_backend();
 
 }  // namespace sdfbench

@@ -3,10 +3,10 @@
 #include <vector>
 
 #include "renderers/renderer.h"
-#include "renderers/sdf/brick_field.h"
+#include "renderers/sdf_bricks/brick_field.h"
 #include "renderers/sdf/scene_hash.h"
 #include "renderers/sdf/sphere_tracer.h"
-#include "renderers/sdf_vk/brick_field_tables.h"
+#include "renderers/sdf_bricks/brick_field_tables.h"
 #include "renderers/sdf_vk/sdf_gpu_tables.h"
 #include "renderers/vulkan/vulkan_frame_runner.h"
 #include "renderers/vulkan/vulkan_renderer.h"
@@ -14,7 +14,7 @@
 namespace sdfbench {
 
 // sdf-bricks (issue 28): the thesis' scene hash and octree lists (as sdf-octree) over per-mesh
-// sampled brick fields (renderers/sdf/brick_field.h), sphere-traced in sdf_bricks.comp. Its
+// sampled brick fields (renderers/sdf_bricks/brick_field.h), sphere-traced in sdf_bricks.comp. Its
 // parameters are its own (backend_params.h): --voxels, --sdf-format, --brick-band, --brick-trace.
 class SdfBricksRenderer : public VulkanRenderer {
  public:
@@ -40,8 +40,5 @@ class SdfBricksRenderer : public VulkanRenderer {
 // for values outside their ranges.
 sdf::BrickFieldParams brick_field_params(const BackendParams& params, uint64_t max_bytes);
 
-// Its entry in the backend registry (renderers/backend_registry.h).
-struct BackendInfo;
-BackendInfo sdf_bricks_backend();
 
 }  // namespace sdfbench

@@ -1,4 +1,4 @@
-#include "renderers/sdf/brick_field.h"
+#include "renderers/sdf_bricks/brick_field.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "renderers/sdf/triangle_box_overlap.h"
+#include "renderers/sdf_global/triangle_box_overlap.h"
 
 #include <algorithm>
 #include <cmath>

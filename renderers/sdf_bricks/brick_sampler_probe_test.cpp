@@ -1,5 +1,5 @@
 // --brick-fetch sampler against brute force (issue 39): the sampled fields' sampling code run on
-// the Vulkan device through the hardware filter (renderers/sdf_vk/brick_field_probe.comp), at
+// the Vulkan device through the hardware filter (renderers/sdf_bricks/brick_field_probe.comp), at
 // points near and far from the surface. The bound it returns must never exceed the exact distance
 // over all triangles, and its filtered value must lie within the slack the kernels allow the filter
 // (brick_filter_slack) of the exact trilinear that the texel path computes (BrickCpuSampler).
@@ -10,10 +10,10 @@
 
 #include <gtest/gtest.h>
 
-#include "renderers/sdf/brick_field.h"
+#include "renderers/sdf_bricks/brick_field.h"
 #include "renderers/sdf/mesh_distance_grid.h"
-#include "renderers/sdf_vk/brick_field_tables.h"
-#include "renderers/sdf_vk/brick_gpu_arrays.h"
+#include "renderers/sdf_bricks/brick_field_tables.h"
+#include "renderers/sdf_bricks/brick_gpu_arrays.h"
 #include "renderers/vulkan/compute_kernel.h"
 #include "renderers/vulkan/gpu_buffer.h"
 #include "renderers/vulkan/one_time_commands.h"

@@ -1,4 +1,4 @@
-#include "renderers/sdf_vk/sdf_global_renderer.h"
+#include "renderers/sdf_global/sdf_global_renderer.h"
 
 #include <cmath>
 #include <iostream>
@@ -6,11 +6,11 @@
 #include <sstream>
 #include <utility>
 
-#include "renderers/backend_registry.h"
-#include "renderers/sdf/cell_triangle_refs.h"
+#include "renderers/backend.h"
+#include "renderers/sdf_global/cell_triangle_refs.h"
 #include "renderers/sdf/sdf_cache.h"
 #include "renderers/sdf/sdf_params.h"
-#include "renderers/sdf_vk/brick_gpu_arrays.h"
+#include "renderers/sdf_bricks/brick_gpu_arrays.h"
 #include "renderers/sdf_vk/sdf_gpu_arrays.h"
 #include "util/error.h"
 
@@ -127,7 +127,7 @@ void SdfGlobalRenderer::prepare(const Scene& scene) {
 BackendInfo sdf_global_backend() {
   BackendInfo info;
   info.name = "sdf-global";
-  info.kind = "sdf-sampled";
+  info.kind = BackendKind::SdfSampled;
   info.summary = "one sampled field over the whole scene (UE5's global distance field), exact hits on the mesh grids";
   // No scene hash, cell bounds or over-relaxation: one field bounds all of space.
   info.params = sdf::sdf_params({"mesh_cell", "cells_per_extent", "fixed_grid", "hit", "max_steps", "storage_tables"},

@@ -1,4 +1,4 @@
-#include "renderers/sdf_vk/brick_field_tables.h"
+#include "renderers/sdf_bricks/brick_field_tables.h"
 
 #include <cmath>
 
@@ -69,7 +69,7 @@ BrickFieldTables::BrickFieldTables(const VulkanContext& context, const BrickGpuA
     params.options.z = 2.0f * std::sqrt(3.0f) * std::ldexp(1.0f, -int(context.properties().limits.subTexelPrecisionBits));
     // ... and its result has a precision of its own: a UNORM8 image may be filtered in 8-bit fixed
     // point, three rounds of lerps each off by up to a step (lavapipe's is: 1.35 steps from the exact
-    // trilinear at most over 24685 points, tests/brick_sampler_probe_test.cpp, where 1/1024 of the
+    // trilinear at most over 24685 points, renderers/sdf_bricks/brick_sampler_probe_test.cpp, where 1/1024 of the
     // band failed), so u8 allows three steps of 2 band / 255; the float formats 1/1024 of the band.
     params.options.w = arrays.format == sdf::SdfFormat::u8 ? 6.0f / 255.0f : 1.0f / 1024.0f;
     image_ = GpuImage3D(context, image.extent, format, sample_bytes, image.texels.data(), "brick atlas");

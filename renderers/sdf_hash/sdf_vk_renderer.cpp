@@ -1,13 +1,41 @@
-#include "renderers/sdf_vk/sdf_vk_renderer.h"
-
 #include <iostream>
+#include <string>
 
-#include "renderers/backend_registry.h"
+#include "renderers/backend.h"
+#include "renderers/renderer.h"
+#include "renderers/sdf/scene_hash.h"
+#include "renderers/sdf/sdf_cache.h"
 #include "renderers/sdf/sdf_params.h"
+#include "renderers/sdf/sphere_tracer.h"
 #include "renderers/sdf_vk/sdf_gpu_arrays.h"
+#include "renderers/sdf_vk/sdf_gpu_tables.h"
+#include "renderers/vulkan/vulkan_frame_runner.h"
+#include "renderers/vulkan/vulkan_renderer.h"
 #include "util/error.h"
 
 namespace sdfbench {
+
+// The thesis' renderer, Vulkan compute: sphere tracing through the scene hash (+ octrees) and
+// the per-mesh distance grids. One class, one kernel (sdf_trace.comp) for both backends:
+// "sdf-hash" builds with octree depth 0 and hash cell 1 (thesis table 6.2), "sdf-octree" with
+// the given octree parameters (table 6.1); each declares the parameters it owns.
+class SdfVkRenderer : public VulkanRenderer {
+ public:
+  SdfVkRenderer(std::string name, const BackendOptions& options);
+  std::string name() const override { return name_; }
+  void prepare(const Scene& scene) override;
+  FrameResult render(const FrameRequest& request) override { return runner_.run(request); }
+  std::optional<StructureStats> structure_stats() const override { return stats_; }
+
+ private:
+  std::string name_;
+  BackendOptions options_;
+  std::optional<StructureStats> stats_;  // of the CPU structures the GPU tables were flattened from
+  sdf::SphereTraceParams tracing_;
+  sdf::SceneHashParams hash_params_;  // sdf-hash: octree depth 0 (it owns no octree parameters)
+  SdfGpuTables tables_;
+  VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
+};
 
 SdfVkRenderer::SdfVkRenderer(std::string name, const BackendOptions& options)
     : VulkanRenderer(options),
@@ -42,9 +70,9 @@ const std::vector<std::string> kOctreeParams = {"octree_depth", "octree_min_obje
 BackendInfo exact_kernel_backend(const std::string& name, std::vector<ParamSpec> params) {
   BackendInfo info;
   info.name = name;
-  info.kind = "sdf-exact";
+  info.kind = BackendKind::SdfExact;
   info.params = std::move(params);
-  info.counters = info.steps = info.stores_structure = true;
+  info.counters = info.steps = info.stores_structure = info.scene_hash = true;
   info.create = [name](const BackendOptions& options) { return std::make_unique<SdfVkRenderer>(name, options); };
   return info;
 }

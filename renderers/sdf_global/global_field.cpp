@@ -1,4 +1,4 @@
-#include "renderers/sdf/global_field.h"
+#include "renderers/sdf_global/global_field.h"
 
 #include <algorithm>
 #include <chrono>

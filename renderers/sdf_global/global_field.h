@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "renderers/sdf/brick_field.h"
+#include "renderers/sdf_bricks/brick_field.h"
 #include "scenes/scene.h"
 
 namespace sdfbench::sdf {
