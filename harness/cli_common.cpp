@@ -114,14 +114,17 @@ const char* value_type(const ParamSpec& spec) {
   return "VALUE";
 }
 
+// A flag's value, parsed and checked once against its declaration (renderers/backend_params.h).
+TypedParam parse_flag_value(const ParamSpec& spec, const std::string& value) {
+  std::string why;
+  const std::optional<TypedParam> typed = parse_param(spec, value, why);
+  if (!typed) throw Error(flag_of(spec) + ": " + why);
+  return *typed;
+}
+
 }  // namespace
 
-std::string parse_param_value(const ParamSpec& spec, const std::string& value) {
-  std::string why;
-  const std::string canonical = canonical_param_value(spec, value, why);
-  if (!why.empty()) throw Error(flag_of(spec) + ": " + why);
-  return canonical;
-}
+std::string parse_param_value(const ParamSpec& spec, const std::string& value) { return parse_flag_value(spec, value).text; }
 
 std::vector<std::string> parse_param_list(const ParamSpec& spec, const std::string& list) {
   std::vector<std::string> values;
@@ -138,13 +141,13 @@ void add_backend_param_options(CLI::App& command, BackendParams& params, const s
   for (const ParamSpec& spec : param_catalogue()) {
     if (include && !include(spec)) continue;
     if (spec.kind == ParamKind::Flag) {
-      command.add_flag_function(flag_of(spec), [&params, name = spec.name](int64_t) { params.set(name, "1"); }, param_help(spec))
+      command.add_flag_function(flag_of(spec), [&params, name = spec.name](int64_t) { params.set(name, TypedParam{"1", true}); }, param_help(spec))
           ->group(spec.group);
       continue;
     }
     command
         .add_option_function<std::string>(
-            flag_of(spec), [&params, spec](const std::string& value) { params.set(spec.name, parse_param_value(spec, value)); },
+            flag_of(spec), [&params, spec](const std::string& value) { params.set(spec.name, parse_flag_value(spec, value)); },
             param_help(spec))
         ->type_name(value_type(spec))
         ->group(spec.group);

@@ -8,6 +8,8 @@
 
 #include "harness/cli_common.h"
 #include "harness/commands.h"
+#include "harness/measurement.h"
+#include "renderers/work_counters.h"
 
 namespace sdfbench {
 namespace {
@@ -52,6 +54,13 @@ void print_json() {
   std::cout << out.dump(2) << "\n";
 }
 
+// The counters' CSV columns as docs/commands.md's CSV table lists them: "steps_per_ray, ...".
+std::string counter_column_list() {
+  std::string list;
+  for (const std::string& column : counter_columns()) list += (list.empty() ? "" : ", ") + column;
+  return list;
+}
+
 void print_text() {
   for (const BackendInfo& b : backends()) {
     std::cout << b.name << " (" << to_string(b.kind) << ", " << (b.vulkan ? "Vulkan" : "CPU") << (b.in_table ? "" : ", not in `table` by default")
@@ -68,14 +77,21 @@ void register_backends_command(CLI::App& app) {
   struct Args {
     bool json = false;
     std::string names;
+    std::string counters_markdown;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("backends", "List the backends, what they support and the parameters each owns");
   cmd->add_flag("--json", args->json, "as JSON (names, kinds, parameters with defaults, ranges and choices; for scripts)");
   cmd->add_option("--names", args->names, "only the names, comma-separated: all, or table (those `table` runs by default)")
       ->check(CLI::IsMember({"all", "table"}));
+  cmd->add_option("--counters-markdown", args->counters_markdown,
+                  "docs/commands.md's generated counter text (harness/scripts/update_docs.sh writes it there): table "
+                  "(the \"Counters\" table) or csv-columns (the counters' CSV columns, comma-separated)")
+      ->check(CLI::IsMember({"table", "csv-columns"}));
   cmd->callback([args] {
-    if (args->names == "all") std::cout << backend_list() << "\n";
+    if (args->counters_markdown == "table") std::cout << counters_markdown();
+    else if (args->counters_markdown == "csv-columns") std::cout << counter_column_list() << "\n";
+    else if (args->names == "all") std::cout << backend_list() << "\n";
     else if (args->names == "table") std::cout << default_table_backends() << "\n";
     else if (args->json) print_json();
     else print_text();

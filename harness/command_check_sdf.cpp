@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,8 +14,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "harness/cli_common.h"
 #include "harness/commands.h"
+#include "renderers/backend_registry.h"
 #include "renderers/sdf/mesh_distance_grid.h"
+#include "renderers/sdf/sdf_params.h"
 #include "scenes/scene.h"
 #include "scenes/mesh.h"
 #include "scenes/mesh_file.h"
@@ -28,10 +32,22 @@ namespace sdfbench {
 namespace {
 
 struct CheckSdfArgs {
-  std::string mesh, samples = "100000", mesh_cell, cells_per_extent, seed = "1", tolerance = "1e-5", rule = "tight",
-              subdivision = "2";
-  bool fixed_grid = false;
+  std::string mesh, samples = "100000", seed = "1", tolerance = "1e-5", rule = "tight", subdivision = "2";
+  BackendParams grid;  // --mesh-cell, --cells-per-extent, --fixed-grid: the backends' declarations
 };
+
+// The backends' parameters check-sdf takes as flags (their declarations: ranges, defaults, help),
+// and what it reads of them: the mesh grid's (sdf::mesh_grid_params), --max-structure-mb at its
+// default.
+const char* const kGridFlags[] = {"mesh_cell", "cells_per_extent", "fixed_grid"};
+
+BackendInfo mesh_grid_reader() {
+  BackendInfo reader;
+  reader.name = "check-sdf";
+  for (const char* name : kGridFlags) reader.params.push_back(catalogue_spec(name));
+  reader.params.push_back(catalogue_spec("max_structure_mb"));
+  return reader;
+}
 
 uint64_t parse_integer(const std::string& text, const char* option, uint64_t lo, uint64_t hi) {
   uint64_t v = 0;
@@ -133,14 +149,12 @@ void run_check_sdf(const CheckSdfArgs& args) {
   const uint64_t sample_count = parse_integer(args.samples, "--samples", 1, 100000000);
   const uint64_t seed = parse_integer(args.seed, "--seed", 0, UINT64_MAX);
   const float tolerance = parse_positive(args.tolerance, "--tolerance", true);
-  sdf::MeshGridParams params;
-  if (!args.mesh_cell.empty() && !args.cells_per_extent.empty())
+  // The grid's flags were parsed by their declarations; resolved, they are the backends' record.
+  const BackendParams grid_params = resolve_params(mesh_grid_reader(), args.grid);
+  sdf::MeshGridParams params = sdf::mesh_grid_params(grid_params);
+  if (params.cell_size != 0.0f && args.grid.has("cells_per_extent"))  // --cells-per-extent is used with --mesh-cell 0
     throw Error("--mesh-cell and --cells-per-extent both set the grid resolution: give one of them");
-  if (!args.mesh_cell.empty()) params.cell_size = parse_positive(args.mesh_cell, "--mesh-cell", false);
-  if (!args.cells_per_extent.empty())
-    params.cells_per_extent = static_cast<uint32_t>(parse_integer(args.cells_per_extent, "--cells-per-extent", 1, 4096));
   params.subdivision = static_cast<uint32_t>(parse_integer(args.subdivision, "--subdivision", 1, 8));
-  params.scale_with_triangles = !args.fixed_grid;
   if (args.rule == "sphere")
     params.rule = sdf::MeshGridRule::sphere;
   else if (args.rule != "tight")
@@ -282,9 +296,9 @@ void register_check_sdf_command(CLI::App& app) {
   cmd->add_option("--mesh", args->mesh, "a thesis mesh (bunny, teapot, monkey, sphere), a scan (armadillo, ...: harness/scripts/fetch_scanned_meshes.sh), a thesis mesh at a size (bunny@200000), or a mesh file (.obj, .ply, .off, .gltf, .glb)")->required();
   cmd->add_option("--samples", args->samples, "sample points (40% in the grid box, 40% near the surface, 20% outside)")
       ->capture_default_str();
-  cmd->add_option("--mesh-cell", args->mesh_cell, "grid cell size in mesh units (default: from --cells-per-extent)");
-  cmd->add_option("--cells-per-extent", args->cells_per_extent, "cells along the mesh's largest extent (default 32)");
-  cmd->add_flag("--fixed-grid", args->fixed_grid, "no finer grid and far cells for meshes over 8192 triangles (mesh_distance_grid.h)");
+  add_backend_param_options(*cmd, args->grid, [](const ParamSpec& spec) {
+    return std::find(std::begin(kGridFlags), std::end(kGridFlags), spec.name) != std::end(kGridFlags);
+  });
   cmd->add_option("--seed", args->seed, "PCG32 seed of the samples")->capture_default_str();
   cmd->add_option("--tolerance", args->tolerance, "pass if max |grid - brute force| <= tolerance x mesh extent")
       ->capture_default_str();

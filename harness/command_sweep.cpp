@@ -38,17 +38,18 @@ void run_sweep(SweepArgs args) {
   base.options = args.options;
   // Every axis parsed and checked once (against this backend's own values), and the product
   // refused before anything is built.
-  std::vector<std::pair<std::string, std::vector<std::string>>> axes;
+  std::vector<std::pair<std::string, std::vector<TypedParam>>> axes;
   std::vector<std::pair<std::string, size_t>> axis_sizes;
   for (const auto& [name, list] : args.axes) {
     const ParamSpec& spec = catalogue_spec(name);
     if (!owns(backend, name))
       throw Error(flag_of(spec) + " is a parameter of " + owners_of(name) + "; --backend " + args.backend + " does not take it");
-    const std::vector<std::string> values = parse_param_list(spec, list);
-    for (const std::string& value : values) {
+    std::vector<TypedParam> values;
+    for (const std::string& value : parse_param_list(spec, list)) {
       BackendParams one;
       one.set(name, value);
-      resolve_params(backend, one);  // throws naming the flag for a value this backend refuses
+      // Throws naming the flag for a value this backend refuses; the plan keeps the typed value.
+      values.push_back(*resolve_params(backend, one).typed(name));
     }
     axis_sizes.emplace_back(flag_of(spec), values.size());
     axes.emplace_back(name, values);
@@ -70,7 +71,7 @@ void run_sweep(SweepArgs args) {
     if (axis == axes.end()) continue;
     std::vector<BenchConfig> expanded;
     for (const BenchConfig& c : plan)
-      for (const std::string& value : axis->second) {
+      for (const TypedParam& value : axis->second) {
         expanded.push_back(c);
         expanded.back().options.params.set(spec.name, value);
       }

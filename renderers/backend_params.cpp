@@ -53,28 +53,56 @@ std::string describe_values(const ParamSpec& spec) {
   return "?";
 }
 
-std::string canonical_param_value(const ParamSpec& spec, const std::string& value, std::string& why) {
+namespace {
+
+// The range part of a declaration, on a number already read: the one range rule of a parameter.
+bool in_range(const ParamSpec& spec, double v) {
+  return v >= spec.lo && v <= spec.hi && !(spec.lo_open && v <= spec.lo);
+}
+
+}  // namespace
+
+std::optional<TypedParam> parse_param(const ParamSpec& spec, const std::string& value, std::string& why) {
   why.clear();
-  if (is_choice(spec, value)) return value;
+  if (is_choice(spec, value)) return TypedParam{value, value};
   const std::string expected = "expected " + describe_values(spec) + ", got " + quoted(value);
-  if (spec.kind == ParamKind::Choice) return why = expected, "";
+  if (spec.kind == ParamKind::Choice) return why = expected, std::nullopt;
   if (spec.kind == ParamKind::Flag) {
-    if (value == "0" || value == "1") return value;
-    return why = expected, "";
+    if (value == "0" || value == "1") return TypedParam{value, value == "1"};
+    return why = expected, std::nullopt;
   }
   double v = 0;
   const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
-  if (value.empty() || ec != std::errc() || end != value.data() + value.size() || !std::isfinite(v)) return why = expected, "";
+  if (value.empty() || ec != std::errc() || end != value.data() + value.size() || !std::isfinite(v))
+    return why = expected, std::nullopt;
   if (spec.kind == ParamKind::Integer) {
-    if (v != std::floor(v) || v < spec.lo || v > spec.hi) return why = expected, "";
-    return std::to_string(static_cast<int64_t>(v));
+    if (v != std::floor(v) || !in_range(spec, v)) return why = expected, std::nullopt;
+    const int64_t i = static_cast<int64_t>(v);
+    return TypedParam{std::to_string(i), i};
   }
-  // A real is used as it is recorded: rounded to the CSV's 6 digits, then checked again (so a
-  // value below the range's resolution is refused, not measured as another one).
+  // A real is used as it is recorded: rounded to the CSV's 6 digits, then checked (so a value
+  // below the range's resolution is refused, not measured as another one).
   const std::string canonical = short_number(v);
   const double used = std::strtod(canonical.c_str(), nullptr);
-  if (used < spec.lo || used > spec.hi || (spec.lo_open && used <= spec.lo)) return why = expected, "";
-  return canonical;
+  if (!in_range(spec, used)) return why = expected, std::nullopt;
+  return TypedParam{canonical, used};
+}
+
+bool param_accepts(const ParamSpec& spec, const TypedParam& value) {
+  if (const auto* word = std::get_if<std::string>(&value.value)) return is_choice(spec, *word);
+  switch (spec.kind) {
+    case ParamKind::Integer:
+      return std::holds_alternative<int64_t>(value.value) && in_range(spec, static_cast<double>(std::get<int64_t>(value.value)));
+    case ParamKind::Real: return std::holds_alternative<double>(value.value) && in_range(spec, std::get<double>(value.value));
+    case ParamKind::Flag: return std::holds_alternative<bool>(value.value);
+    case ParamKind::Choice: return false;  // a choice is a word
+  }
+  return false;
+}
+
+std::string canonical_param_value(const ParamSpec& spec, const std::string& value, std::string& why) {
+  const std::optional<TypedParam> typed = parse_param(spec, value, why);
+  return typed ? typed->text : "";
 }
 
 ParamSpec with_default(ParamSpec spec, const std::string& default_value) {
@@ -94,17 +122,55 @@ const ParamSpec& find_spec(const std::vector<ParamSpec>& specs, const std::strin
   throw Error("internal: no parameter '" + name + "' is declared");
 }
 
+namespace {
+
+[[noreturn]] void undeclared(const std::string& name) {
+  throw Error("internal: parameter '" + name + "' read by a backend that does not declare it (renderers/backend_registry.h)");
+}
+
+const char* kind_name(const ParamValue& value) {
+  switch (value.index()) {
+    case 0: return "an integer";
+    case 1: return "a number";
+    case 2: return "a word";
+    default: return "a flag";
+  }
+}
+
+template <typename T>
+T typed_as(const std::string& name, const ParamValue& value, const char* wanted) {
+  if (const T* v = std::get_if<T>(&value)) return *v;
+  throw Error("internal: parameter '" + name + "' read as " + wanted + ", but its value is " + kind_name(value));
+}
+
+}  // namespace
+
 const std::string& BackendParams::text(const std::string& name) const {
-  const auto it = values_.find(name);
-  if (it == values_.end())
-    throw Error("internal: parameter '" + name + "' read by a backend that does not declare it (renderers/backend_registry.h)");
+  const auto it = texts_.find(name);
+  if (it == texts_.end()) undeclared(name);
   return it->second;
 }
 
-int64_t BackendParams::integer(const std::string& name) const { return std::stoll(text(name)); }
+std::optional<TypedParam> BackendParams::typed(const std::string& name) const {
+  const auto it = typed_.find(name);
+  if (it == typed_.end()) return std::nullopt;
+  return TypedParam{text(name), it->second};
+}
 
-double BackendParams::real(const std::string& name) const { return std::strtod(text(name).c_str(), nullptr); }
+const ParamValue& BackendParams::value(const std::string& name) const {
+  const auto it = typed_.find(name);
+  if (it != typed_.end()) return it->second;
+  if (!has(name)) undeclared(name);
+  throw Error("internal: parameter '" + name + "' ('" + text(name) +
+              "') read before it was resolved against its declaration (resolve_params, renderers/backend_registry.h)");
+}
 
-bool BackendParams::flag(const std::string& name) const { return text(name) == "1"; }
+int64_t BackendParams::integer(const std::string& name) const { return typed_as<int64_t>(name, value(name), "an integer"); }
+
+double BackendParams::real(const std::string& name) const { return typed_as<double>(name, value(name), "a number"); }
+
+bool BackendParams::flag(const std::string& name) const { return typed_as<bool>(name, value(name), "a flag"); }
+
+bool BackendParams::is_word(const std::string& name) const { return std::holds_alternative<std::string>(value(name)); }
 
 }  // namespace sdfbench

@@ -6,7 +6,9 @@
 // through the typed accessors of BackendParams.
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace sdfbench {
@@ -33,9 +35,26 @@ struct ParamSpec {
 };
 
 std::string flag_of(const ParamSpec& spec);  // "--hash-cell"
-// The value as it is used and recorded (one spelling per value: "064" -> "64", "0.50" -> "0.5",
-// reals to 6 significant digits as the CSV writes numbers), or an empty string with `why` set
-// (without the flag's name: "expected an integer in [4, 1024], got '2'").
+
+// A value as its declaration makes it: Integer -> int64_t, Real -> double (the value the canonical
+// text reads back as), Flag -> bool, and a word (a Choice, or a word an Integer or Real accepts:
+// --global-voxel auto) -> std::string.
+using ParamValue = std::variant<int64_t, double, std::string, bool>;
+struct TypedParam {
+  std::string text;  // canonical: what the CSV records and configuration keys compare
+  ParamValue value;  // what a backend reads
+  bool operator==(const TypedParam&) const = default;
+};
+
+// The one parser of a parameter's value: the text checked against `spec` and made its typed value
+// and canonical text (one spelling per value: "064" -> "64", "0.50" -> "0.5", reals to 6
+// significant digits as the CSV writes numbers), or nullopt with `why` set (without the flag's
+// name: "expected an integer in [4, 1024], got '2'").
+std::optional<TypedParam> parse_param(const ParamSpec& spec, const std::string& value, std::string& why);
+// Whether a value parsed against another declaration of the same parameter (the catalogue's, whose
+// choices are every backend's) is one `spec` takes (its own choices and range); no parsing.
+bool param_accepts(const ParamSpec& spec, const TypedParam& value);
+// parse_param's canonical text, or an empty string with `why` set.
 std::string canonical_param_value(const ParamSpec& spec, const std::string& value, std::string& why);
 // The spec's range or choices in words ("an integer in [1, 1000000]", "exact, thesis or field").
 std::string describe_values(const ParamSpec& spec);
@@ -45,26 +64,44 @@ ParamSpec with_choices(ParamSpec spec, const std::vector<std::string>& choices, 
 // The spec named `name` in `specs`; throws Error("internal: ...") when there is none.
 const ParamSpec& find_spec(const std::vector<ParamSpec>& specs, const std::string& name);
 
-// Parameter values by name. On the command side: the values given (validated against the
-// catalogue's specs by the caller); on a backend's side: every parameter it owns, resolved
-// (given or its default), read through the typed accessors, which refuse a parameter the backend
-// does not own (it would silently read nothing).
+// Parameter values by name. On the command side: the values given, as text (a test's, a CSV row's
+// read back) or already typed (a flag's, parsed against the catalogue's spec); on a backend's side
+// (resolve_params, backend_registry.h): every parameter it owns, given or its default, typed once
+// against the backend's own declaration. The typed accessors return that value without parsing
+// again; they refuse a parameter the backend does not declare (it would silently read nothing), a
+// value not yet resolved and one of another kind, each an internal error.
 class BackendParams {
  public:
-  void set(const std::string& name, const std::string& canonical_value) { values_[name] = canonical_value; }
-  void erase(const std::string& name) { values_.erase(name); }
-  bool has(const std::string& name) const { return values_.count(name) > 0; }
-  const std::map<std::string, std::string>& values() const { return values_; }
+  void set(const std::string& name, const std::string& text) {  // as given: resolved by resolve_params
+    texts_[name] = text;
+    typed_.erase(name);
+  }
+  void set(const std::string& name, const TypedParam& value) {
+    texts_[name] = value.text;
+    typed_.insert_or_assign(name, value.value);
+  }
+  void erase(const std::string& name) {
+    texts_.erase(name);
+    typed_.erase(name);
+  }
+  bool has(const std::string& name) const { return texts_.count(name) > 0; }
+  const std::map<std::string, std::string>& values() const { return texts_; }  // the canonical texts
+  // The typed value, where it is one (set from a TypedParam).
+  std::optional<TypedParam> typed(const std::string& name) const;
 
   const std::string& text(const std::string& name) const;
   int64_t integer(const std::string& name) const;
   double real(const std::string& name) const;  // a Real given as a number (not one of its words)
   bool flag(const std::string& name) const;
+  bool is_word(const std::string& name) const;  // a Real or Integer given as one of its words ("auto")
 
-  bool operator==(const BackendParams&) const = default;
+  // Equal when the canonical texts are (the typed values follow from them): a configuration key.
+  bool operator==(const BackendParams& other) const { return texts_ == other.texts_; }
 
  private:
-  std::map<std::string, std::string> values_;
+  const ParamValue& value(const std::string& name) const;
+  std::map<std::string, std::string> texts_;
+  std::map<std::string, ParamValue> typed_;
 };
 
 }  // namespace sdfbench

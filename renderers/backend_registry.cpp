@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -138,14 +139,24 @@ void check_params_taken(const BackendParams& given, const std::vector<std::strin
 BackendParams resolve_params(const BackendInfo& backend, const BackendParams& given) {
   BackendParams resolved;
   for (const ParamSpec& spec : backend.params) {
+    std::string why;
     if (!given.has(spec.name)) {
-      resolved.set(spec.name, spec.default_value);
+      // The default, typed as a given value is; one its declaration refuses, or spells otherwise
+      // than the CSV would record it, is the declaration's error.
+      const std::optional<TypedParam> value = parse_param(spec, spec.default_value, why);
+      if (!value || value->text != spec.default_value)
+        throw Error("internal: " + backend.name + " declares " + spec.name + " with the default '" + spec.default_value +
+                    "', " + (value ? "which it records as '" + value->text + "'" : why));
+      resolved.set(spec.name, *value);
       continue;
     }
-    std::string why;
-    const std::string value = canonical_param_value(spec, given.text(spec.name), why);
-    if (!why.empty()) throw Error(flag_of(spec) + " " + given.text(spec.name) + ": " + backend.name + " takes " + describe_values(spec));
-    resolved.set(spec.name, value);
+    // A flag's value was parsed against the catalogue's declaration (every backend's choices):
+    // checked against this backend's own, not parsed again. One given as text (a test's, a CSV
+    // row's) is parsed here, once.
+    std::optional<TypedParam> value = given.typed(spec.name);
+    if (value ? !param_accepts(spec, *value) : !(value = parse_param(spec, given.text(spec.name), why)))
+      throw Error(flag_of(spec) + " " + given.text(spec.name) + ": " + backend.name + " takes " + describe_values(spec));
+    resolved.set(spec.name, *value);
   }
   return resolved;
 }

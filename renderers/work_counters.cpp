@@ -4,38 +4,20 @@ namespace sdfbench {
 
 namespace {
 
-using enum CounterGroup;
-// One entry per counter of work_counter_list.glsl, in its order.
-constexpr std::array<CounterInfo, COUNTER_KINDS> kCounters = {{
-    {COUNTER_STEPS, "steps", "steps/ray", evaluations,
-     "sphere-tracing steps: scene-distance queries along a ray, inside the hash box"},
-    {COUNTER_INSTANCE_EVALS, "instance_evals", "instance evals/ray", evaluations,
-     "instance distance evaluations: a mesh grid queried in an instance's frame (sdf-bricks: an instance traced over a "
-     "segment, or evaluated at a step with `--brick-trace min`; sdf-global: a listed instance tested exactly over a window)"},
-    {COUNTER_TRIANGLE_EVALS, "triangle_evals", "triangle evals/ray", evaluations, "point-triangle distances computed"},
-    {COUNTER_AABB_TESTS, "aabb_tests", "AABB tests/ray", tests,
-     "tri-aabb: ray-box slab tests (every instance, per closest-hit ray); bvh: child boxes tested (2 per node visited, "
-     "both levels); SDF: a listed instance's box tested against the best distance so far, which skips the instance when "
-     "no nearer"},
-    {COUNTER_TRIANGLE_TESTS, "triangle_tests", "triangle tests/ray", tests,
-     "ray-triangle tests (Möller–Trumbore): tri-aabb's and bvh's traversal; the SDF backends' exact hit (`--hit exact`)"},
-    {COUNTER_OUT_OF_STEPS, "out_of_steps", "out of steps/ray", rays,
-     "rays whose march ended by `--max-steps` (per ray: the fraction of rays); with `--hit exact` the rest of such a "
-     "ray's segment is tested against the instance it last converged on"},
-    {COUNTER_FIELD_SAMPLES, "field_samples", "field samples/ray", evaluations,
-     "trilinear samples of a brick field (8 texels or one filtered fetch; in an empty brick 8 coarse texels, "
-     "sdf-global: one)"},
-    {COUNTER_CELL_SETS, "cell_sets", "cell sets/ray", evaluations,
-     "reference cells whose (instance, triangle) set was tested (`--exact-lists triangles`; 0 with the instance lists)"},
-}};
+// One entry per line of WORK_COUNTER_TABLE, in its order.
+#define WORK_COUNTER_INFO(ID, name, label, group, backends, doc) {COUNTER_##ID, #name, label, CounterGroup::group, backends, doc},
+constexpr std::array<CounterInfo, COUNTER_KINDS> kCounters = {{WORK_COUNTER_TABLE(WORK_COUNTER_INFO)}};
+#undef WORK_COUNTER_INFO
 
-// Entry k is counter k: a missing, extra or misplaced entry (or a gap in the list's ids) fails here.
+// Entry k is counter k, with every word.
 constexpr bool table_matches_list() {
   for (uint32_t k = 0; k < COUNTER_KINDS; ++k)
-    if (kCounters[k].id != k || !kCounters[k].name || !kCounters[k].label || !kCounters[k].doc) return false;
+    if (kCounters[k].id != k || !*kCounters[k].name || !*kCounters[k].label || !*kCounters[k].backends ||
+        !*kCounters[k].doc)
+      return false;
   return true;
 }
-static_assert(table_matches_list(), "kCounters must have one entry per WORK_COUNTERS line, in its order");
+static_assert(table_matches_list(), "every WORK_COUNTER_TABLE line needs a name, label, backends and doc");
 
 }  // namespace
 
@@ -48,6 +30,24 @@ const std::array<const char*, COUNTER_KINDS>& counter_names() {
     return n;
   }();
   return names;
+}
+
+std::string counters_markdown() {
+  std::string text = "| counter | what is counted | backends |\n|---|---|---|\n";
+  for (const CounterInfo& c : kCounters)
+    text += std::string("| ") + c.name + " | " + c.doc + " | " + c.backends + " |\n";
+  return text;
+}
+
+const std::string& work_counter_glsl_prelude() {
+  static const std::string prelude = [] {
+    std::string text = "#define WORK_COUNTERS(X)";
+#define WORK_COUNTER_GLSL(ID, ...) text += " X(" #ID ", " + std::to_string(COUNTER_##ID) + "u)";
+    WORK_COUNTER_TABLE(WORK_COUNTER_GLSL)
+#undef WORK_COUNTER_GLSL
+    return text + "\n";
+  }();
+  return prelude;
 }
 
 WorkCounters sum_counters(const std::vector<uint32_t>& pixel_counts, uint32_t kinds) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "renderers/shading/gpu_types.h"
@@ -18,19 +19,31 @@ using WorkCounters = std::array<std::optional<uint64_t>, COUNTER_KINDS>;
 // evaluates, after them with the intersection tests, or not at all (a share of the rays, not work).
 enum class CounterGroup { evaluations, tests, rays };
 
-// One counter: renderers/shading/work_counter_list.glsl gives it its id, this its words.
+// One counter: its line of WORK_COUNTER_TABLE (renderers/work_counter_list.h).
 struct CounterInfo {
-  uint32_t id;         // COUNTER_<ID>
-  const char* name;    // "cell_sets": the CSV's cell_sets_per_ray column, what `render --counters` prints
-  const char* label;   // "cell sets/ray": a report's column title
+  uint32_t id;           // COUNTER_<ID>
+  const char* name;      // "cell_sets": the CSV's cell_sets_per_ray column, what `render --counters` prints
+  const char* label;     // "cell sets/ray": a report's column title
   CounterGroup group;
-  const char* doc;     // what is counted: docs/commands.md "Counters" says the same (a test compares)
+  const char* backends;  // "sdf-global": the docs' "backends" cell
+  const char* doc;       // what is counted: docs/commands.md "Counters" says it (counters_markdown())
 };
 
 // Every counter, in id order.
 const std::array<CounterInfo, COUNTER_KINDS>& counter_table();
 // Their names, by id.
 const std::array<const char*, COUNTER_KINDS>& counter_names();
+
+// docs/commands.md's "Counters" table, a row per counter (counter, what is counted, backends), each
+// line ending in '\n': `sdfbench backends --counters-markdown table` prints it and
+// harness/scripts/update_docs.sh puts it between the doc's markers.
+std::string counters_markdown();
+
+// What renderers/vulkan/shader_compiler.cpp prepends to every kernel: the counters as #defines,
+// WORK_COUNTERS(X) with X(ID, index) per counter, "#define WORK_COUNTERS(X) X(STEPS, 0u) ...\n"
+// (shading_types.glsl declares COUNTER_<ID> and COUNTER_KINDS of it, work_counters.glsl zeroes
+// `counted`).
+const std::string& work_counter_glsl_prelude();
 
 // Which counters a backend has: bit k for COUNTER kind k.
 inline constexpr uint32_t counter_bit(uint32_t kind) { return 1u << kind; }

@@ -16,6 +16,8 @@
 #include "renderers/sdf/cache/section_codec.h"
 #include "renderers/sdf/sdf_cache.h"
 #include "renderers/sdf/sdf_cache_format.h"
+#include "renderers/sdf_bricks/brick_field.h"
+#include "renderers/sdf_global/global_field.h"
 #include "scenes/mesh.h"
 #include "scenes/random.h"
 #include "scenes/scene_source.h"
@@ -95,6 +97,12 @@ std::vector<size_t> entries_of_kind(const Bytes& bytes, uint32_t kind) {
   for (size_t i = 0; i < sections; ++i)
     if (peek<uint32_t>(bytes, kTable + i * kEntry + kKind) == kind) out.push_back(kTable + i * kEntry);
   return out;
+}
+
+// The requests for these structures' parameters (brick fields, global field).
+template <class... Params>
+sdf::StructureRequests requests(const Params&... params) {
+  return {sdf::structure_request(params)...};
 }
 
 template <class F>
@@ -357,13 +365,13 @@ TEST_F(SdfCacheTest, ScaledGridsRoundTripAndLyingFarCellsAreRefused) {
 // and hostile brick sections refused.
 TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
   const sdf::BrickFieldParams bricks{16, 3, sdf::SdfFormat::f16};
-  sdf::SceneSdf with = sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), {bricks});
-  ASSERT_EQ(with.brick_fields.size(), scene_->meshes.size());
+  sdf::SceneSdf with = sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), requests(bricks));
+  ASSERT_EQ(with.get<sdf::BrickFields>().fields.size(), scene_->meshes.size());
   const fs::path path = dir_.path() / "bricks.sdfcache";
   sdf::write_sdf_cache(path, *scene_, with, small_grid());
-  const sdf::SceneSdf loaded = sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {bricks});
-  ASSERT_EQ(loaded.brick_fields.size(), 1u);
-  const sdf::BrickField &a = with.brick_fields[0], &b = loaded.brick_fields[0];
+  const sdf::SceneSdf loaded = sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), requests(bricks));
+  ASSERT_EQ(loaded.get<sdf::BrickFields>().fields.size(), 1u);
+  const sdf::BrickField &a = with.get<sdf::BrickFields>().fields[0], &b = loaded.get<sdf::BrickFields>().fields[0];
   EXPECT_EQ(a.origin, b.origin);
   EXPECT_EQ(a.voxel, b.voxel);
   EXPECT_EQ(a.bricks, b.bricks);
@@ -378,13 +386,13 @@ TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
   EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash()));  // the exact backends ignore them
   const sdf::BrickFieldParams other{16, 3, sdf::SdfFormat::u8};
   try {
-    sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {other});
+    sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), requests(other));
     ADD_FAILURE() << "a cache with other brick parameters was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("--sdf-format f16, requested"), std::string::npos) << e.what();
   }
   try {
-    sdf::load_sdf_cache(write_valid(), *scene_, small_grid(), small_hash(), {bricks});
+    sdf::load_sdf_cache(write_valid(), *scene_, small_grid(), small_hash(), requests(bricks));
     ADD_FAILURE() << "a cache without brick fields was accepted for sdf-bricks";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("holds no brick fields"), std::string::npos) << e.what();
@@ -394,12 +402,12 @@ TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
   std::ostringstream log;
   const fs::path plain = write_valid();
   const sdf::SceneSdf completed =
-      sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, {bricks});
-  EXPECT_EQ(completed.brick_fields.size(), 1u);
+      sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, requests(bricks));
+  EXPECT_EQ(completed.get<sdf::BrickFields>().fields.size(), 1u);
   EXPECT_NE(log.str().find("added brick fields"), std::string::npos) << log.str();
-  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), {bricks}));
+  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), requests(bricks)));
   EXPECT_THROW(
-      sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, {other}),
+      sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, requests(other)),
       Error);
   const Bytes valid = read_all(path);
   const sdf::SdfCacheContents c = sdf::decode_sdf_cache(valid, "valid");
@@ -443,9 +451,9 @@ TEST_F(SdfCacheTest, BrickFieldsRoundTripAndAreChecked) {
 // cache lacks it and is completed).
 TEST_F(SdfCacheTest, AStructureInAnotherCodecVersionIsStaleForItAlone) {
   const sdf::BrickFieldParams bricks{16, 3, sdf::SdfFormat::f16};
-  const sdf::SectionCodec& codec = sdf::brick_field_codec();
+  const sdf::SectionCodec& codec = *sdf::codec_of_kind(sdf::BrickFields::kKind);
   const fs::path path = dir_.path() / "bricks.sdfcache";
-  sdf::write_sdf_cache(path, *scene_, sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), {bricks}), small_grid());
+  sdf::write_sdf_cache(path, *scene_, sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), requests(bricks)), small_grid());
   const Bytes valid = read_all(path);
   ASSERT_FALSE(entries_of_kind(valid, codec.kind).empty());
 
@@ -454,19 +462,19 @@ TEST_F(SdfCacheTest, AStructureInAnotherCodecVersionIsStaleForItAlone) {
   sdf::reseal_sdf_cache(newer);
   write_all(path, newer);
   const sdf::SdfCacheContents c = sdf::decode_sdf_cache(newer, "newer");
-  EXPECT_FALSE(c.sdf.brick_params.has_value());
+  EXPECT_FALSE(c.sdf.holds(sdf::BrickFields::kKind));
   ASSERT_EQ(c.structures.size(), 3u);
   EXPECT_EQ(c.structures[2].name, "brick fields");
   EXPECT_FALSE(c.structures[2].read);
   EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash()));
-  const std::string stale = error_of([&] { sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {bricks}); });
+  const std::string stale = error_of([&] { sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), requests(bricks)); });
   EXPECT_NE(stale.find("is stale: it holds brick fields in codec version " + std::to_string(codec.version + 1) +
                        ", this sdfbench reads version " + std::to_string(codec.version)),
             std::string::npos)
       << stale;
   std::ostringstream log;
   const std::string refused = error_of([&] {
-    sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {path.string(), sdf::BadCachePolicy::Refuse}, log, {bricks});
+    sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {path.string(), sdf::BadCachePolicy::Refuse}, log, requests(bricks));
   });
   EXPECT_NE(refused.find("codec version"), std::string::npos) << refused;
   EXPECT_NE(refused.find("pass --on-bad-cache rebuild to replace it"), std::string::npos) << refused;
@@ -474,21 +482,21 @@ TEST_F(SdfCacheTest, AStructureInAnotherCodecVersionIsStaleForItAlone) {
   EXPECT_EQ(inspect.exit_code, 0) << inspect.output;
   EXPECT_NE(inspect.output.find("brick fields v" + std::to_string(codec.version + 1) + " (not read)"), std::string::npos)
       << inspect.output;
-  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {path.string(), sdf::BadCachePolicy::Rebuild}, log, {bricks});
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {path.string(), sdf::BadCachePolicy::Rebuild}, log, requests(bricks));
   EXPECT_NE(log.str().find("rebuilding"), std::string::npos) << log.str();
-  EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {bricks}));
+  EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), requests(bricks)));
 
   Bytes unknown = valid;
   for (const size_t e : entries_of_kind(valid, codec.kind)) poke<uint32_t>(unknown, e + kKind, 77u);
   sdf::reseal_sdf_cache(unknown);
   write_all(path, unknown);
   EXPECT_EQ(sdf::decode_sdf_cache(unknown, "unknown").structures.at(2).name, "kind 77");
-  EXPECT_NE(error_of([&] { sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {bricks}); }).find("holds no brick fields"),
+  EXPECT_NE(error_of([&] { sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), requests(bricks)); }).find("holds no brick fields"),
             std::string::npos);
   log.str("");
-  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {path.string(), sdf::BadCachePolicy::Refuse}, log, {bricks});
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {path.string(), sdf::BadCachePolicy::Refuse}, log, requests(bricks));
   EXPECT_NE(log.str().find("added brick fields"), std::string::npos) << log.str();
-  EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {bricks}));
+  EXPECT_NO_THROW(sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), requests(bricks)));
 }
 
 // A cache of format version 2 (build parameters in the header, before the per-structure codecs)
@@ -533,17 +541,17 @@ sdf::GlobalFieldParams small_global(const Scene& scene) {
 // still good for the other backends.
 TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
   const sdf::GlobalFieldParams global = small_global(*scene_);
-  const sdf::SceneSdf with = sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), {global});
-  ASSERT_TRUE(with.global_params.has_value());
-  ASSERT_GT(with.global_field.field.stored_bricks(), 0u);
-  ASSERT_FALSE(with.global_field.list_instances.empty());
+  const sdf::SceneSdf with = sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), requests(global));
+  ASSERT_NE(with.find<sdf::GlobalFieldStructure>(), nullptr);
+  ASSERT_GT(with.get<sdf::GlobalFieldStructure>().field.field.stored_bricks(), 0u);
+  ASSERT_FALSE(with.get<sdf::GlobalFieldStructure>().field.list_instances.empty());
   const fs::path path = dir_.path() / "global.sdfcache";
   sdf::write_sdf_cache(path, *scene_, with, small_grid());
-  const sdf::SceneSdf loaded = sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {global});
-  ASSERT_TRUE(loaded.global_params.has_value());
-  EXPECT_TRUE(sdf::same(*loaded.global_params, global));
-  EXPECT_EQ(loaded.global_params->voxel, global.voxel);
-  const sdf::GlobalField &a = with.global_field, &b = loaded.global_field;
+  const sdf::SceneSdf loaded = sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), requests(global));
+  ASSERT_NE(loaded.find<sdf::GlobalFieldStructure>(), nullptr);
+  EXPECT_TRUE(sdf::same(loaded.get<sdf::GlobalFieldStructure>().params, global));
+  EXPECT_EQ(loaded.get<sdf::GlobalFieldStructure>().params.voxel, global.voxel);
+  const sdf::GlobalField &a = with.get<sdf::GlobalFieldStructure>().field, &b = loaded.get<sdf::GlobalFieldStructure>().field;
   EXPECT_EQ(a.field.origin, b.field.origin);
   EXPECT_EQ(a.field.voxel, b.field.voxel);
   EXPECT_EQ(a.field.bricks, b.field.bricks);
@@ -558,7 +566,7 @@ TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
   EXPECT_EQ(a.list_begin, b.list_begin);
   EXPECT_EQ(a.list_instances, b.list_instances);
   EXPECT_EQ(a.build_ms, b.build_ms);
-  EXPECT_TRUE(loaded.brick_fields.empty());
+  EXPECT_FALSE(loaded.holds(sdf::BrickFields::kKind));
   const fs::path again = dir_.path() / "global-again.sdfcache";
   sdf::write_sdf_cache(again, *scene_, loaded, small_grid());
   EXPECT_EQ(read_all(path), read_all(again));
@@ -578,7 +586,7 @@ TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
     const fs::path resealed = dir_.path() / "resealed.sdfcache";
     write_all(resealed, edited);
     try {
-      sdf::load_sdf_cache(resealed, *scene_, small_grid(), small_hash(), {global});
+      sdf::load_sdf_cache(resealed, *scene_, small_grid(), small_hash(), requests(global));
       ADD_FAILURE() << "a resealed global field with another voxel was accepted";
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("its global field's voxel is not the one its request"), std::string::npos) << e.what();
@@ -587,7 +595,7 @@ TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
   sdf::GlobalFieldParams other = global;
   other.format = sdf::SdfFormat::u8;
   try {
-    sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), {other});
+    sdf::load_sdf_cache(path, *scene_, small_grid(), small_hash(), requests(other));
     ADD_FAILURE() << "a cache with other global field parameters was accepted";
   } catch (const Error& e) {
     const std::string message = e.what();
@@ -595,7 +603,7 @@ TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
     EXPECT_NE(message.find(sdf::describe(global) + ", requested " + sdf::describe(other)), std::string::npos) << message;
   }
   try {
-    sdf::load_sdf_cache(write_valid(), *scene_, small_grid(), small_hash(), {global});
+    sdf::load_sdf_cache(write_valid(), *scene_, small_grid(), small_hash(), requests(global));
     ADD_FAILURE() << "a cache without a global field was accepted for sdf-global";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("holds no global field"), std::string::npos) << e.what();
@@ -606,33 +614,33 @@ TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
   std::ostringstream log;
   const fs::path plain = write_valid();
   const sdf::SceneSdf completed = sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(),
-                                                        {plain.string(), sdf::BadCachePolicy::Refuse}, log, {global});
-  ASSERT_TRUE(completed.global_params.has_value());
-  EXPECT_EQ(completed.global_field.field.atlas, a.field.atlas);
-  EXPECT_EQ(completed.global_field.list_instances, a.list_instances);
+                                                        {plain.string(), sdf::BadCachePolicy::Refuse}, log, requests(global));
+  ASSERT_NE(completed.find<sdf::GlobalFieldStructure>(), nullptr);
+  EXPECT_EQ(completed.get<sdf::GlobalFieldStructure>().field.field.atlas, a.field.atlas);
+  EXPECT_EQ(completed.get<sdf::GlobalFieldStructure>().field.list_instances, a.list_instances);
   EXPECT_NE(log.str().find("SDF cache: added the global field (" + sdf::describe(global) + ") to '" + plain.string() + "'"),
             std::string::npos)
       << log.str();
-  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), {global}));
+  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), requests(global)));
   log.str("");
-  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, {global});
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log, requests(global));
   EXPECT_NE(log.str().find("build skipped"), std::string::npos) << log.str();
   EXPECT_EQ(log.str().find("added"), std::string::npos) << log.str();
   EXPECT_THROW(sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Refuse}, log,
-                                     {other}),
+                                     requests(other)),
                Error);
   log.str("");
-  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Rebuild}, log, {other});
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {plain.string(), sdf::BadCachePolicy::Rebuild}, log, requests(other));
   EXPECT_NE(log.str().find("rebuilding"), std::string::npos) << log.str();
-  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), {other}));
+  EXPECT_NO_THROW(sdf::load_sdf_cache(plain, *scene_, small_grid(), small_hash(), requests(other)));
   // Brick fields and the global field together: both completed in one pass.
   const sdf::BrickFieldParams bricks{16, 3, sdf::SdfFormat::f32};
   const fs::path both = write_valid();
   log.str("");
-  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {both.string(), sdf::BadCachePolicy::Refuse}, log, {bricks, global});
+  sdf::obtain_scene_sdf(*scene_, small_grid(), small_hash(), {both.string(), sdf::BadCachePolicy::Refuse}, log, requests(bricks, global));
   EXPECT_NE(log.str().find("added brick fields"), std::string::npos) << log.str();
   EXPECT_NE(log.str().find("added the global field"), std::string::npos) << log.str();
-  EXPECT_NO_THROW(sdf::load_sdf_cache(both, *scene_, small_grid(), small_hash(), {bricks, global}));
+  EXPECT_NO_THROW(sdf::load_sdf_cache(both, *scene_, small_grid(), small_hash(), requests(bricks, global)));
 }
 
 // Hostile global sections and parameters, re-checksummed: each refused with a clear message by
@@ -641,7 +649,7 @@ TEST_F(SdfCacheTest, GlobalFieldRoundTripsAndIsCompleted) {
 TEST_F(SdfCacheTest, HostileGlobalFieldsAreRefused) {
   const sdf::GlobalFieldParams global = small_global(*scene_);
   const fs::path path = dir_.path() / "global.sdfcache";
-  sdf::write_sdf_cache(path, *scene_, sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), {global}), small_grid());
+  sdf::write_sdf_cache(path, *scene_, sdf::build_scene_sdf(*scene_, small_grid(), small_hash(), requests(global)), small_grid());
 
   // A clamped f16 value rounds to the nearest half, past the band by up to its quantization
   // (band / 2048): accepted; a value farther out: refused.
@@ -649,17 +657,20 @@ TEST_F(SdfCacheTest, HostileGlobalFieldsAreRefused) {
   const sdf::SdfCacheContents c = sdf::decode_sdf_cache(valid, "valid");
   {
     sdf::SdfCacheContents edge = c;
-    const float band = edge.sdf.global_field.field.band, quantization = edge.sdf.global_field.field.quantization;
+    sdf::GlobalFieldStructure global = c.sdf.get<sdf::GlobalFieldStructure>();  // a copy to edit (held ones are shared)
+    const float band = global.field.field.band, quantization = global.field.field.quantization;
+    const auto with_first_sample = [&](uint16_t h) {
+      std::memcpy(global.field.field.atlas.data(), &h, sizeof h);
+      edge.sdf.set(global);
+      return sdf::encode_sdf_cache(edge);
+    };
     for (const float v : {band, -band, band + 0.9f * quantization}) {
       const uint16_t h = glm::packHalf1x16(v);
       if (std::abs(glm::unpackHalf1x16(h)) > band + quantization) continue;  // not a value the build can store
-      std::memcpy(edge.sdf.global_field.field.atlas.data(), &h, sizeof h);
-      EXPECT_NO_THROW(sdf::decode_sdf_cache(sdf::encode_sdf_cache(edge), "edge")) << v << " for band " << band;
+      EXPECT_NO_THROW(sdf::decode_sdf_cache(with_first_sample(h), "edge")) << v << " for band " << band;
     }
     EXPECT_LE(std::abs(glm::unpackHalf1x16(glm::packHalf1x16(band))), band + quantization);
-    const uint16_t beyond = glm::packHalf1x16(-band * 1.01f);
-    std::memcpy(edge.sdf.global_field.field.atlas.data(), &beyond, sizeof beyond);
-    EXPECT_THROW(sdf::decode_sdf_cache(sdf::encode_sdf_cache(edge), "beyond"), Error);
+    EXPECT_THROW(sdf::decode_sdf_cache(with_first_sample(glm::packHalf1x16(-band * 1.01f)), "beyond"), Error);
   }
   auto section = [&](const std::string& name) { return section_named(c, name); };
   const auto first_stored = [&](const Bytes& b) -> uint64_t {
@@ -834,24 +845,31 @@ TEST(SdfBuildReuse, SameInputsReuseAndOthersBuild) {
   hash_of(hash_only);
   EXPECT_EQ(hashes, 1);
 
-  // The global field: keyed by the scene's geometry (an instance moved is another field).
+  // The optional structures, built by their requests: a reused one is the same (shared) entry.
+  // The global field is keyed by the scene's geometry (an instance moved is another field).
   sdf::GlobalFieldParams global;
-  global.voxel = 0.1f;
-  int fields = 0;
-  const auto field_of = [&](const Scene& s, const sdf::SceneSdf& structures) {
-    return sdf::reuse_global_field(s, params, global, [&] {
-      ++fields;
-      return sdf::build_global_field(s, structures, params, global);
-    });
+  global.voxel = 0.3f;
+  const auto global_of = [&](const Scene& s) {
+    return sdf::build_scene_sdf(s, params, sdf::SceneHashParams{}, requests(global)).optional.at(sdf::GlobalFieldStructure::kKind);
   };
-  const sdf::GlobalField a = field_of(scene, sdf), b = field_of(scene, sdf);
-  EXPECT_EQ(fields, 1);
-  EXPECT_EQ(a.field.atlas, b.field.atlas);
-  EXPECT_EQ(a.list_instances, b.list_instances);
+  const auto a = global_of(scene), b = global_of(scene);
+  EXPECT_EQ(a, b) << "the global field is reused";
   Scene shifted = scene;
   shifted.instances[0].transform.translation.x += 0.5f;
-  field_of(shifted, sdf::build_scene_sdf(shifted, params, sdf::SceneHashParams{}));
-  EXPECT_EQ(fields, 2);
+  EXPECT_NE(global_of(shifted), a);
+  const auto& field_a = dynamic_cast<const sdf::GlobalFieldStructure&>(*a).field;
+  EXPECT_EQ(field_a.field.atlas, sdf::build_global_field(scene, sdf, params, global).field.atlas) << "as a fresh build";
+  global.max_bytes += 1 << 20;  // a limit is part of the key: a reused build never bypasses it
+  EXPECT_NE(global_of(scene), a);
+  // Brick fields are keyed by each mesh: another scene of the same mesh reuses them.
+  const sdf::BrickFieldParams bricks{16, 3, sdf::SdfFormat::f16};
+  const auto fields_of = [&](const Scene& s) {
+    return sdf::build_scene_sdf(s, params, sdf::SceneHashParams{}, requests(bricks)).get<sdf::BrickFields>().fields.at(0);
+  };
+  const sdf::BrickField built = fields_of(scene), reused = fields_of(shifted);
+  EXPECT_EQ(built.build_ms, reused.build_ms) << "the first build's time: reused";
+  EXPECT_EQ(built.atlas, reused.atlas);
+  EXPECT_EQ(built.atlas, sdf::build_brick_field(scene.meshes[0], sdf.mesh_grids[0], bricks).atlas) << "as a fresh build";
 }
 
 // The store on disk (build_store.h): what one process built, a later one loads (here: this

@@ -11,7 +11,6 @@
 
 #include <tbb/parallel_invoke.h>
 
-#include "renderers/sdf/build_reuse.h"
 #include "util/error.h"
 #include "util/input_file.h"
 #include "util/progress.h"
@@ -225,9 +224,15 @@ size_t SceneHash::bytes() const {
 }
 
 void validate(const SceneHashParams& p) {
-  if (!(p.hash_cell > 0.0f) || !std::isfinite(p.hash_cell)) throw Error("--hash-cell must be > 0");
-  if (!(p.octree_min_size > 0.0f) || !std::isfinite(p.octree_min_size)) throw Error("--octree-min-size must be > 0");
-  if (p.octree_depth > 16) throw Error("--octree-depth must be at most 16");
+  // The builder's domain, for a record made in code (one_cell_hash: a cell as large as the scene,
+  // beyond --hash-cell's range; tests). The flags' ranges are their declarations' (sdf_params.cpp,
+  // checked where a value is parsed), a cache file's values are checked where they are decoded
+  // (cache/scene_hash_codec.cpp), and what depends on the scene is scene_hash_dims'.
+  if (!(p.hash_cell > 0.0f) || !std::isfinite(p.hash_cell) || !(p.octree_min_size > 0.0f) ||
+      !std::isfinite(p.octree_min_size) || p.octree_depth > 16)
+    throw Error("internal: a scene hash of cell " + short_number(p.hash_cell) + ", octree depth " +
+                std::to_string(p.octree_depth) + " and min node size " + short_number(p.octree_min_size) +
+                " (sizes must be positive and finite, the depth at most 16)");
 }
 
 namespace {
@@ -330,53 +335,6 @@ SceneHashParams one_cell_hash(const Scene& scene, uint64_t max_bytes) {
   p.lists = ListRule::Thesis;
   p.max_bytes = max_bytes;
   return p;
-}
-
-double build_ms(const SceneSdf& sdf) {
-  double ms = sdf.hash.build_ms;
-  for (const MeshDistanceGrid& g : sdf.mesh_grids) ms += g.build_ms;
-  for (const BrickField& f : sdf.brick_fields) ms += f.build_ms;
-  if (sdf.global_params) ms += sdf.global_field.build_ms;
-  return ms;
-}
-
-size_t bytes(const SceneSdf& sdf) {
-  size_t total = sdf.hash.bytes();
-  for (const MeshDistanceGrid& g : sdf.mesh_grids) total += g.bytes();
-  for (const BrickField& f : sdf.brick_fields) total += f.bytes();
-  if (sdf.global_params) total += sdf.global_field.bytes();
-  return total;
-}
-
-SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
-                         const StructureRequests& extras) {
-  scene_hash_dims(scene, hash_params);  // an impossible hash is refused before the mesh grids are built
-  for (const StructureRequest& extra : extras) validate(extra);
-  SceneSdf sdf;
-  for (const Mesh& mesh : scene.meshes)
-    sdf.mesh_grids.push_back(reuse_mesh_grid(mesh, mesh_params, [&] { return build_mesh_distance_grid(mesh, mesh_params); }));
-  sdf.hash = reuse_scene_hash(scene, mesh_params, hash_params, [&] { return build_scene_hash(scene, sdf.mesh_grids, hash_params); });
-  for (const Instance& instance : scene.instances) sdf.world_to_object.push_back(instance.transform.world_to_object());
-  for (const StructureRequest& extra : extras) add_structure(sdf, scene, mesh_params, extra);
-  return sdf;
-}
-
-void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const StructureRequest& request) {
-  std::visit([&](const auto& params) { add_structure(sdf, scene, mesh_params, params); }, request);
-}
-
-void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const GlobalFieldParams& global) {
-  sdf.global_field = reuse_global_field(scene, mesh_params, global, [&] { return build_global_field(scene, sdf, mesh_params, global); });
-  sdf.global_params = global;
-}
-
-void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const BrickFieldParams& bricks) {
-  sdf.brick_fields.clear();
-  for (size_t m = 0; m < scene.meshes.size(); ++m)
-    sdf.brick_fields.push_back(reuse_brick_field(scene.meshes[m], mesh_params, bricks, [&] {
-      return build_brick_field(scene.meshes[m], sdf.mesh_grids[m], bricks);
-    }));
-  sdf.brick_params = bricks;
 }
 
 float instance_distance(const SceneSdf& sdf, const Scene& scene, uint32_t i, const glm::vec3& p, uint32_t* triangle) {

@@ -8,10 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "renderers/sdf_bricks/brick_field.h"
-#include "renderers/sdf_global/global_field.h"
 #include "renderers/sdf/mesh_distance_grid.h"
-#include "renderers/sdf/structure_request.h"
 #include "scenes/scene.h"
 
 namespace sdfbench::sdf {
@@ -56,23 +53,7 @@ struct SceneHash {
   size_t bytes() const;
 };
 
-// One scene's SDF: a distance grid per mesh (shared by its instances) and the scene hash; for
-// sdf-bricks also a sampled brick field per mesh (brick_field.h); for sdf-global one sampled field
-// over the whole scene (global_field.h).
-struct SceneSdf {
-  std::vector<MeshDistanceGrid> mesh_grids;
-  SceneHash hash;
-  std::vector<glm::mat4> world_to_object;  // per instance (build_scene_sdf fills it): queries reuse it
-  std::optional<BrickFieldParams> brick_params;  // set with brick_fields
-  std::vector<BrickField> brick_fields;          // per mesh, or none
-  std::optional<GlobalFieldParams> global_params;  // set with global_field
-  GlobalField global_field;
-};
-
-// Build time and payload bytes of all of a scene's structures (mesh grids + hash + brick fields +
-// global field).
-double build_ms(const SceneSdf& sdf);
-size_t bytes(const SceneSdf& sdf);
+struct SceneSdf;  // scene_sdf.h (included at the end): the scene hash with the mesh grids and the optional structures
 
 void validate(const SceneHashParams& params);  // throws Error for non-positive sizes etc.
 // The hash grid's cells per axis over the scene's instances; throws Error (with the real counts)
@@ -85,15 +66,6 @@ SceneHashParams one_cell_hash(const Scene& scene, uint64_t max_bytes = kDefaultM
 // Throws Error when the scene hash, or its octrees as they grow, would pass the limits above
 // (naming the flags to change); long builds print progress on stderr (util/progress.h).
 SceneHash build_scene_hash(const Scene& scene, const std::vector<MeshDistanceGrid>& grids, const SceneHashParams& params);
-// `extras`: the optional structures asked for besides the exact ones (structure_request.h): a
-// brick field per mesh for sdf-bricks, the scene's global field for sdf-global.
-SceneSdf build_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
-                         const StructureRequests& extras = {});
-// Adds (replaces) one optional structure of `sdf`, sampled from its mesh grids: each structure's
-// overload, and the request's (which calls the one its parameters name).
-void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const BrickFieldParams& bricks);
-void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const GlobalFieldParams& global);
-void add_structure(SceneSdf& sdf, const Scene& scene, const MeshGridParams& mesh_params, const StructureRequest& request);
 
 // Distance from world point p to one instance's surface: the mesh grid distance taken in the
 // instance's frame and scaled back (exact inside the mesh grid box, a lower bound outside).
@@ -121,3 +93,7 @@ SceneDistance scene_distance(const SceneSdf& sdf, const Scene& scene, const glm:
 SceneDistance brute_force_scene_distance(const SceneSdf& sdf, const Scene& scene, const glm::vec3& p);
 
 }  // namespace sdfbench::sdf
+
+// SceneSdf, which most users of the scene hash read it through (it includes this header, whose
+// declarations above need it only by reference).
+#include "renderers/sdf/scene_sdf.h"

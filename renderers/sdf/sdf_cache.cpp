@@ -140,7 +140,7 @@ CachedSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path,
   if (!counts_match) throw Error(stale + "its mesh or instance counts differ from the scene's");
   // Values a build derives from others (the checksum is no authentication: a cache resealed with
   // changed values decodes): each mesh grid where the mesh's bounds and the parameters put it,
-  // the global field at the voxel its request gives.
+  // and what each requested structure's request checks (e.g. the global field's voxel).
   const std::string resealed = "SDF cache '" + path.string() + "' disagrees with itself: ";
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const MeshGridLayout layout = mesh_grid_layout(scene.meshes[m], mesh_params);
@@ -150,22 +150,22 @@ CachedSdf sdf_from_cache(std::span<const std::byte> bytes, const fs::path& path,
       throw Error(resealed + "mesh '" + scene.meshes[m].name + "''s grid has another cell size, origin, size or far-cell layout than "
                   "the mesh's bounds and " + describe(mesh_params) + " give (a cache edited and resealed?)");
   }
-  if (c.sdf.global_params && !scene.instances.empty() &&
-      c.sdf.global_field.field.voxel != global_field_voxel(scene, *c.sdf.global_params))
-    throw Error(resealed + "its global field's voxel is not the one its request (" + describe(*c.sdf.global_params) +
-                ") gives for this scene (a cache edited and resealed?)");
+  for (const auto& extra : extras)
+    if (const auto held = c.sdf.optional.find(extra->kind()); held != c.sdf.optional.end())
+      if (const std::string disagrees = extra->disagrees(*held->second, scene); !disagrees.empty())
+        throw Error(resealed + disagrees);
   CachedSdf cached;
-  for (const StructureRequest& extra : extras) {
-    const SectionCodec& codec = codec_for(extra);
-    if (codec.holds(c.sdf)) {
-      if (const std::string differs = codec.differs(c.sdf, extra); !differs.empty()) throw Error(stale + differs);
+  for (const auto& extra : extras) {
+    const SectionCodec& codec = codec_for(*extra);
+    if (const auto held = c.sdf.optional.find(extra->kind()); held != c.sdf.optional.end()) {
+      if (const std::string differs = extra->differs(*held->second); !differs.empty()) throw Error(stale + differs);
       continue;
     }
     for (const StoredStructure& s : c.structures)
       if (s.kind == codec.kind)  // held, but in a layout this sdfbench does not read
         throw Error(stale + "it holds " + codec.name + " in codec version " + std::to_string(s.version) +
                     ", this sdfbench reads version " + std::to_string(codec.version));
-    if (!complete) throw Error(stale + "it holds no " + codec.name + " (requested " + describe(extra) + ")");
+    if (!complete) throw Error(stale + "it holds no " + codec.name + " (requested " + extra->describe() + ")");
     cached.missing.push_back(extra);
   }
   cached.sdf = std::move(c.sdf);
@@ -184,7 +184,7 @@ SceneSdf load_sdf_cache(const fs::path& path, const Scene& scene, const MeshGrid
 
 SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params, const SceneHashParams& hash_params,
                           const CacheOptions& cache, std::ostream& log, const StructureRequests& extras) {
-  for (const StructureRequest& extra : extras) validate(extra);  // bad parameters are named before any cache is read
+  for (const auto& extra : extras) extra->validate();  // bad parameters are named before any cache is read
   if (cache.path.empty()) return build_scene_sdf(scene, mesh_params, hash_params, extras);
   const fs::path path = cache.path;
   std::error_code ec;
@@ -207,10 +207,10 @@ SceneSdf obtain_scene_sdf(const Scene& scene, const MeshGridParams& mesh_params,
       log << "SDF cache: loaded '" << path.string() << "' in " << static_cast<long>(ms) << " ms (build skipped)\n";
       // Outside the policy: a field that cannot be built (or a cache too big to write) is no bad cache.
       SceneSdf& sdf = loaded->sdf;
-      for (const StructureRequest& extra : loaded->missing) add_structure(sdf, scene, mesh_params, extra);
+      for (const auto& extra : loaded->missing) extra->build(sdf, scene, mesh_params);
       if (!loaded->missing.empty() && write_sdf_cache(path, scene, sdf, mesh_params, true))
-        for (const StructureRequest& extra : loaded->missing)
-          log << "SDF cache: added " << codec_for(extra).the_name << " (" << describe(extra) << ") to '" << path.string() << "'\n";
+        for (const auto& extra : loaded->missing)
+          log << "SDF cache: added " << codec_for(*extra).the_name << " (" << extra->describe() << ") to '" << path.string() << "'\n";
       return std::move(sdf);
     }
   }

@@ -31,9 +31,9 @@ bool write_sdf_cache(const std::filesystem::path& path, const Scene& scene, cons
 // parameters. Throws Error with a clear message for a missing, special (FIFO, device,
 // directory), oversized, truncated, corrupt, hostile or stale file; never returns structures
 // that were not validated.
-// `extras`: the optional structures the cache must also hold, built with these parameters
-// (brick fields for sdf-bricks, the global field for sdf-global); a cache with more serves the
-// backends that need fewer.
+// `extras`: the optional structures the cache must also hold, built with the requests'
+// parameters (structure_request.h: brick fields for sdf-bricks, the global field for
+// sdf-global); a cache with more serves the backends that need fewer.
 SceneSdf load_sdf_cache(const std::filesystem::path& path, const Scene& scene, const MeshGridParams& mesh_params,
                         const SceneHashParams& hash_params, const StructureRequests& extras = {});
 

@@ -93,8 +93,8 @@ SceneHashParams scene_hash_params(const BackendParams& params) {
   } else {
     p.octree_depth = 0;  // a backend without an octree (sdf-hash: the thesis' hash-only configuration)
   }
-  validate(p);
-  return p;
+  return p;  // each value in its declaration's range (resolve_params); what depends on the scene: scene_hash_dims
+
 }
 
 SphereTraceParams trace_params(const BackendParams& params) {

@@ -20,9 +20,10 @@ const std::vector<ParamSpec>& sdf_param_specs();
 // thesis; sampled fields: exact or field), the first of them its default.
 std::vector<ParamSpec> sdf_params(const std::vector<std::string>& names, const std::vector<std::string>& hits);
 
-// The records the builders and tracers take, from a backend's resolved parameters. Each reads only
-// the parameters its record holds; a backend that does not own one of them gets its default
-// (scene_hash_params of a backend without an octree: depth 0).
+// The records the builders and tracers take, from a backend's resolved parameters (their typed
+// values, each already checked against its declaration by resolve_params: no range is checked
+// again here). Each reads only the parameters its record holds; a backend that does not own one of
+// them gets its default (scene_hash_params of a backend without an octree: depth 0).
 MeshGridParams mesh_grid_params(const BackendParams& params);
 SceneHashParams scene_hash_params(const BackendParams& params);
 SphereTraceParams trace_params(const BackendParams& params);

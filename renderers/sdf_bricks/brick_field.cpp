@@ -36,15 +36,15 @@ void store_sample(SdfFormat format, float band, float value, uint8_t* out) {
   }
 }
 
-size_t BrickField::bytes() const {
-  return indirection.size() * sizeof(uint32_t) + atlas.size() + coarse.size() * sizeof(float);
-}
-
 void validate(const BrickFieldParams& params) {
-  if (params.voxels < 4 || params.voxels > kMaxVoxels)
-    throw Error("--voxels " + std::to_string(params.voxels) + ": must be between 4 and " + std::to_string(kMaxVoxels));
-  if (params.band < 1 || params.band > 16)
-    throw Error("--brick-band " + std::to_string(params.band) + ": must be between 1 and 16 voxels");
+  // The builder's domain, for a record made in code (tests). The flags' ranges are their
+  // declarations' (sdf_bricks_renderer.cpp, whose --voxels is up to kMaxVoxels, and
+  // brick_field_tables.cpp; checked where a value is parsed), and a cache file's values are checked
+  // where they are decoded (brick_field_codec.cpp).
+  if (params.voxels < 4 || params.voxels > kMaxVoxels || params.band < 1 || params.band > 16)
+    throw Error("internal: a brick field of " + std::to_string(params.voxels) + " voxels and band " +
+                std::to_string(params.band) + " (voxels from 4 to " + std::to_string(kMaxVoxels) +
+                ", band from 1 to 16 voxels)");
 }
 
 

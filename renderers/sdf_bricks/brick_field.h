@@ -16,19 +16,30 @@
 // with --hit field, take the field's own zero crossing.
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/packing.hpp>
 
 #include "renderers/sdf/mesh_distance_grid.h"
+#include "renderers/sdf/scene_sdf.h"
+#include "renderers/sdf/structure_request.h"
 #include "scenes/mesh.h"
 
 namespace sdfbench::sdf {
 
 enum class SdfFormat { f32, f16, u8 };
-std::string to_string(SdfFormat format);
+inline std::string to_string(SdfFormat format) {
+  switch (format) {
+    case SdfFormat::f32: return "f32";
+    case SdfFormat::f16: return "f16";
+    case SdfFormat::u8: return "u8";
+  }
+  return "?";
+}
 inline size_t bytes_per_sample(SdfFormat format) { return format == SdfFormat::f32 ? 4 : format == SdfFormat::f16 ? 2 : 1; }
 // The most a stored value differs from the clamped exact one, with the kernels' arithmetic
 // rounding on values up to the band (a few ulps) counted in: f16 has an 11-bit significand, u8
@@ -55,7 +66,12 @@ struct BrickFieldParams {
 inline bool same(const BrickFieldParams& a, const BrickFieldParams& b) {
   return a.voxels == b.voxels && a.band == b.band && a.format == b.format;
 }
-std::string describe(const BrickFieldParams& params);  // "--voxels 128 --brick-band 4 --sdf-format f32"
+// "--voxels 128 --brick-band 4 --sdf-format f32" (inline: the cache codec, also compiled alone
+// into the cache fuzz target, names them in messages).
+inline std::string describe(const BrickFieldParams& params) {
+  return "--voxels " + std::to_string(params.voxels) + " --brick-band " + std::to_string(params.band) + " --sdf-format " +
+         to_string(params.format);
+}
 
 inline constexpr uint32_t kBrickCells = 7;    // unique cells per brick and axis
 inline constexpr uint32_t kBrickSide = 8;     // samples per brick and axis (the border shared)
@@ -81,7 +97,9 @@ struct BrickField {
   size_t stored_bricks() const { return atlas.size() / (kBrickSamples * bytes_per_sample(format)); }
   glm::uvec3 coarse_dims() const { return coarse_at_centres ? bricks : bricks + 1u; }
   glm::vec3 box_max() const { return origin + voxel * glm::vec3(bricks * kBrickCells); }
-  size_t bytes() const;  // indirection, atlas and coarse level
+  // Indirection, atlas and coarse level (inline: the cache fuzz target, which compiles no builder,
+  // holds fields too).
+  size_t bytes() const { return indirection.size() * sizeof(uint32_t) + atlas.size() + coarse.size() * sizeof(float); }
 };
 
 // Throws Error for voxels outside 4..kMaxVoxels or band outside 1..16. Built in parallel
@@ -91,6 +109,30 @@ struct BrickField {
 void validate(const BrickFieldParams& params);
 BrickField build_brick_field(const Mesh& mesh, const MeshDistanceGrid& grid,
                              const BrickFieldParams& params);
+
+// sdf-bricks' optional structure in SceneSdf: a brick field per mesh, built with `params`
+// (brick_field_request.cpp builds it, brick_field_codec.cpp stores it in the cache).
+struct BrickFields final : OptionalStructure {
+  static constexpr uint32_t kKind = 3;  // its cache codec's kind
+  BrickFieldParams params;
+  std::vector<BrickField> fields;  // per mesh
+
+  BrickFields(const BrickFieldParams& params, std::vector<BrickField> fields) : params(params), fields(std::move(fields)) {}
+  double build_ms() const override {
+    double ms = 0.0;
+    for (const BrickField& f : fields) ms += f.build_ms;
+    return ms;
+  }
+  size_t bytes() const override {
+    size_t total = 0;
+    for (const BrickField& f : fields) total += f.bytes();
+    return total;
+  }
+};
+
+// The request for brick fields with these parameters (structure_request.h): each mesh's field
+// sampled from its grid, this process' earlier build of the same mesh reused.
+std::shared_ptr<const StructureRequest> structure_request(const BrickFieldParams& params);
 
 // Writes `value`, clamped to [-band, band], as one sample in `format` (u8: a band-relative UNORM).
 void store_sample(SdfFormat format, float band, float value, uint8_t* out);

@@ -27,8 +27,7 @@ sdf::BrickFieldParams brick_field_params(const BackendParams& params, uint64_t m
   p.band = static_cast<uint32_t>(params.integer("brick_band"));
   p.format = sdf_format_param(params);
   p.max_bytes = max_bytes;
-  sdf::validate(p);
-  return p;
+  return p;  // each value in its declaration's range (resolve_params)
 }
 
 SdfBricksRenderer::SdfBricksRenderer(const BackendOptions& options)
@@ -46,8 +45,9 @@ void SdfBricksRenderer::prepare(const Scene& scene) {
   BrickGpuArrays bricks;
   {  // the CPU structures are freed once flattened
     const sdf::SceneSdf sdf =
-        sdf::obtain_scene_sdf(scene, sdf::mesh_grid_params(options_.params), hash_params_, options_.cache, std::cerr, {field_params_});
-    const std::vector<sdf::BrickField>& fields = sdf.brick_fields;
+        sdf::obtain_scene_sdf(scene, sdf::mesh_grid_params(options_.params), hash_params_, options_.cache, std::cerr,
+                              {sdf::structure_request(field_params_)});
+    const std::vector<sdf::BrickField>& fields = sdf.get<sdf::BrickFields>().fields;
     stats_ = StructureStats{sdf::build_ms(sdf), sdf::bytes(sdf), {}, std::string("brick_fetch=") + (sampler_ ? "sampler" : "texel")};
     arrays = flatten_for_gpu(scene, sdf, tracing_, LeafLists::overlapping_first);
     for (const Instance& instance : scene.instances)
@@ -75,7 +75,7 @@ BackendInfo sdf_bricks_backend() {
                                  "cells_per_extent", "fixed_grid", "hit", "max_steps", "storage_tables"},
                                 {"exact", "field"});
   info.params.push_back({"voxels", ParamKind::Integer, "128", "brick field lattice cells along each mesh's largest extent",
-                         "sampled fields (sdf-bricks, sdf-global)", {}, 4, 1024});
+                         "sampled fields (sdf-bricks, sdf-global)", {}, 4, sdf::kMaxVoxels});
   for (const ParamSpec& spec : brick_field_param_specs()) info.params.push_back(spec);
   info.params.push_back({"brick_trace", ParamKind::Choice, "instance",
                          "instance: each listed instance traced through its own field, t clamped to the best hit (UE5); "

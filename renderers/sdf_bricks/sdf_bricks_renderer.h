@@ -36,8 +36,8 @@ class SdfBricksRenderer : public VulkanRenderer {
   VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
 };
 
-// The brick field parameters of `params` (--voxels, --sdf-format, --brick-band); throws Error
-// for values outside their ranges.
+// The brick field parameters of `params` (--voxels, --sdf-format, --brick-band), their typed
+// values as resolve_params checked them against their declarations.
 sdf::BrickFieldParams brick_field_params(const BackendParams& params, uint64_t max_bytes);
 
 

@@ -79,10 +79,12 @@ float signed_value(const Composite& c) { return c.inside ? -c.value : c.value; }
 }  // namespace
 
 void validate(const GlobalFieldParams& params) {
-  if (!(params.voxel >= 0.0f) || !std::isfinite(params.voxel))
-    throw Error("--global-voxel: must be a positive size in world units, or auto");
-  if (params.band < 1 || params.band > 16)
-    throw Error("--brick-band " + std::to_string(params.band) + ": must be between 1 and 16 voxels");
+  // The builder's domain, for a record made in code (tests). The flags' ranges are their
+  // declarations' (sdf_global_renderer.cpp, brick_field_tables.cpp; checked where a value is
+  // parsed), and a cache file's values are checked where they are decoded (global_field_codec.cpp).
+  if (!(params.voxel >= 0.0f) || !std::isfinite(params.voxel) || params.band < 1 || params.band > 16)
+    throw Error("internal: a global field of voxel " + std::to_string(params.voxel) + " (0: auto) and band " +
+                std::to_string(params.band) + " (the voxel must be finite and >= 0, the band from 1 to 16 voxels)");
 }
 
 float auto_global_voxel(const Scene& scene) {

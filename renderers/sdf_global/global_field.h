@@ -11,15 +11,17 @@
 // |trilinear| - delta - quantization <= u(p). Per stored brick, a list of the instances whose
 // surface may come within kListSlackVoxels of the brick: the candidates of an exact hit there.
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "renderers/sdf/scene_sdf.h"
+#include "renderers/sdf/structure_request.h"
 #include "renderers/sdf_bricks/brick_field.h"
 #include "scenes/scene.h"
 
 namespace sdfbench::sdf {
-
-struct SceneSdf;
 
 struct GlobalFieldParams {
   float voxel = 0.0f;  // --global-voxel in world units; 0: auto_global_voxel()
@@ -31,7 +33,9 @@ struct GlobalFieldParams {
 inline bool same(const GlobalFieldParams& a, const GlobalFieldParams& b) {
   return a.voxel == b.voxel && a.band == b.band && a.format == b.format;
 }
-std::string describe(const GlobalFieldParams& params);  // "--global-voxel 0.25 --brick-band 4 --sdf-format f32"
+// "--global-voxel 0.25 --brick-band 4 --sdf-format f32" (in global_field_codec.cpp, which the cache
+// fuzz target also compiles, so that the codec can name them in messages).
+std::string describe(const GlobalFieldParams& params);
 void validate(const GlobalFieldParams& params);          // throws Error naming the flag
 
 // --global-voxel auto: the median instance's largest world extent / kAutoVoxelsPerInstance (so a
@@ -68,5 +72,22 @@ float global_field_voxel(const Scene& scene, const GlobalFieldParams& params);
 
 GlobalField build_global_field(const Scene& scene, const SceneSdf& sdf, const MeshGridParams& mesh_params,
                                const GlobalFieldParams& params);
+
+// sdf-global's optional structure in SceneSdf: the global field built with `params`
+// (global_field_request.cpp builds it, global_field_codec.cpp stores it in the cache).
+struct GlobalFieldStructure final : OptionalStructure {
+  static constexpr uint32_t kKind = 4;  // its cache codec's kind
+  GlobalFieldParams params;
+  GlobalField field;
+
+  GlobalFieldStructure(const GlobalFieldParams& params, GlobalField field) : params(params), field(std::move(field)) {}
+  double build_ms() const override { return field.build_ms; }
+  size_t bytes() const override { return field.bytes(); }
+};
+
+// The request for the global field with these parameters (structure_request.h): sampled from the
+// mesh grids, this process' earlier build for the same geometry reused; a cached field whose
+// voxel is not the one its parameters give for the scene disagrees with itself.
+std::shared_ptr<const StructureRequest> structure_request(const GlobalFieldParams& params);
 
 }  // namespace sdfbench::sdf

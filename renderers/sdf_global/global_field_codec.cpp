@@ -2,19 +2,30 @@
 // (--global-voxel as asked, auto stored as 0), a global header (origin, voxel, bricks, stored
 // count, list entry count, build ms), indirection, atlas (in the parameters' format), coarse
 // level (one lower bound per brick, >= 0), list begin (stored + 1 prefix offsets) and list
-// instances.
+// instances. Also describe(GlobalFieldParams), which its messages use (global_field.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
-#include "renderers/sdf/cache/field_sections.h"
 #include "renderers/sdf/cache/section_codec.h"
 #include "renderers/sdf/cache/section_reader.h"
 #include "renderers/sdf/cache/section_writer.h"
 #include "renderers/sdf/cache/value_checks.h"
 #include "renderers/sdf/sdf_cache_format.h"
+#include "renderers/sdf_bricks/brick_field_codec.h"
+#include "renderers/sdf_global/global_field.h"
 
 namespace sdfbench::sdf {
+
+std::string describe(const GlobalFieldParams& params) {
+  std::ostringstream out;
+  out << "--global-voxel ";
+  if (params.voxel > 0.0f) out << params.voxel; else out << "auto";
+  out << " --brick-band " << params.band << " --sdf-format " << to_string(params.format);
+  return out.str();
+}
+
 namespace {
 
 struct ParamsRecord {
@@ -34,8 +45,9 @@ static_assert(sizeof(ParamsRecord) == 16 && sizeof(GlobalHeader) == 48);
 enum Section : uint32_t { kParams, kHeader, kIndirection, kAtlas, kCoarse, kListBegin, kListInstances };
 
 void encode(const SdfCacheContents& c, SectionWriter& out) {
-  const GlobalFieldParams& p = *c.sdf.global_params;
-  const GlobalField& g = c.sdf.global_field;
+  const GlobalFieldStructure& global = c.sdf.get<GlobalFieldStructure>();
+  const GlobalFieldParams& p = global.params;
+  const GlobalField& g = global.field;
   out.add_one(kParams, 0, ParamsRecord{p.voxel, p.band, static_cast<uint32_t>(p.format), 0});
   out.add_one(kHeader, 0, GlobalHeader{g.field.origin, g.field.voxel, g.field.bricks, static_cast<uint32_t>(g.field.stored_bricks()),
                                        static_cast<uint32_t>(g.list_instances.size()), 0, g.build_ms});
@@ -85,36 +97,30 @@ void decode(const SectionReader& in, SdfCacheContents& c) {
              what + ": list begin is not a valid prefix sum of the brick lists");
   in.require(std::all_of(g.list_instances.begin(), g.list_instances.end(), [&](uint32_t k) { return k < c.instance_count; }),
              what + ": a brick list names an instance >= " + std::to_string(c.instance_count));
-  c.sdf.global_params = params;
-  c.sdf.global_field = std::move(g);
+  c.sdf.set(GlobalFieldStructure(params, std::move(g)));
 }
 
 std::vector<std::string> summary(const SdfCacheContents& c) {
-  const GlobalField& g = c.sdf.global_field;
+  const GlobalFieldStructure& global = c.sdf.get<GlobalFieldStructure>();
+  const GlobalField& g = global.field;
   const BrickField& f = g.field;
   char line[320];
   std::snprintf(line, sizeof line,
                 "global       %ux%ux%u bricks of voxel %g from (%g, %g, %g), %zu stored, %zu list entries, built in %.0f ms", f.bricks.x,
                 f.bricks.y, f.bricks.z, f.voxel, f.origin.x, f.origin.y, f.origin.z, f.stored_bricks(), g.list_instances.size(),
                 g.build_ms);
-  return {"global field " + describe(*c.sdf.global_params), line};
+  return {"global field " + describe(global.params), line};
 }
 
 }  // namespace
 
 const SectionCodec& global_field_codec() {
   static const SectionCodec codec{
-      .kind = 4, .name = "global field", .version = 1,
+      .kind = GlobalFieldStructure::kKind, .name = "global field", .version = 1,
       .sections = {{"global params", sizeof(ParamsRecord), false}, {"global header", sizeof(GlobalHeader), false},
                    {"global indirection", 4, false}, {"global atlas", 1, false}, {"global coarse level", 4, false},
                    {"global list begin", 4, false}, {"global list instances", 4, false}},
-      .optional = true, .the_name = "the global field",
-      .held = [](const SceneSdf& sdf) { return sdf.global_params.has_value(); }, .encode = encode, .decode = decode,
-      .summary = summary,
-      .serves = [](const StructureRequest& request) { return std::holds_alternative<GlobalFieldParams>(request); },
-      .differs = [](const SceneSdf& held, const StructureRequest& request) {
-        return field_differs(held.global_params, request, "a global field");
-      },
+      .optional = true, .the_name = "the global field", .encode = encode, .decode = decode, .summary = summary,
   };
   return codec;
 }

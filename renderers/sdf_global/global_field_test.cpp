@@ -60,7 +60,7 @@ class GlobalFieldVsBruteForce : public testing::TestWithParam<GlobalCase> {
     sdf::GlobalFieldParams params;
     params.voxel = c.voxel;
     params.format = c.format;
-    sdf_ = sdf::build_scene_sdf(scene_, sdf::MeshGridParams{}, hash, {params});
+    sdf_ = sdf::build_scene_sdf(scene_, sdf::MeshGridParams{}, hash, {sdf::structure_request(params)});
   }
   Scene scene_;
   sdf::SceneSdf sdf_;
@@ -69,7 +69,7 @@ class GlobalFieldVsBruteForce : public testing::TestWithParam<GlobalCase> {
 // The bound the tracer steps by never exceeds the distance to the nearest surface (in stored
 // bricks, empty bricks, outside the lattice), and near surfaces it is within about a voxel of it.
 TEST_P(GlobalFieldVsBruteForce, BoundNeverExceedsTheDistance) {
-  const sdf::BrickField& field = sdf_.global_field.field;
+  const sdf::BrickField& field = sdf_.get<sdf::GlobalFieldStructure>().field.field;
   const BrickGpuArrays arrays = flatten_brick_fields({field});
   shading::BrickCpuSampler sampler(arrays);
   const auto info = sampler.brick_field_info(0);
@@ -109,7 +109,7 @@ TEST_P(GlobalFieldVsBruteForce, BoundNeverExceedsTheDistance) {
 // A stored sample is the composite's exact magnitude at its lattice point (clamped to the band),
 // to within the format's quantization.
 TEST_P(GlobalFieldVsBruteForce, LatticeSamplesAreTheClampedSceneDistance) {
-  const sdf::BrickField& field = sdf_.global_field.field;
+  const sdf::BrickField& field = sdf_.get<sdf::GlobalFieldStructure>().field.field;
   size_t checked = 0;
   for (size_t b = 0; b < field.brick_count() && checked < 240; b += 7) {
     if (field.indirection[b] == sdf::kEmptyBrick) continue;
@@ -129,7 +129,7 @@ TEST_P(GlobalFieldVsBruteForce, LatticeSamplesAreTheClampedSceneDistance) {
 
 // Every surface point lies in a stored brick that lists its instance (what the exact hits rely on).
 TEST_P(GlobalFieldVsBruteForce, BricksListEveryInstanceWhoseSurfaceTheyHold) {
-  const sdf::GlobalField& global = sdf_.global_field;
+  const sdf::GlobalField& global = sdf_.get<sdf::GlobalFieldStructure>().field;
   const sdf::BrickField& field = global.field;
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);
@@ -158,7 +158,7 @@ TEST_P(GlobalFieldVsBruteForce, BricksListEveryInstanceWhoseSurfaceTheyHold) {
 // lies in (points drawn on random triangles of random instances), at two cell sizes; the bricks
 // no triangle crosses have no table.
 TEST_P(GlobalFieldVsBruteForce, ReferenceCellsListEveryTriangleCrossingThem) {
-  const sdf::BrickField& field = sdf_.global_field.field;
+  const sdf::BrickField& field = sdf_.get<sdf::GlobalFieldStructure>().field.field;
   std::vector<uint32_t> mesh_first(1, 0);
   for (const Mesh& mesh : scene_.meshes) mesh_first.push_back(mesh_first.back() + uint32_t(mesh.triangles.size()));
   for (uint32_t split : {1u, 3u}) {

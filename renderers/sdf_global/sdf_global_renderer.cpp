@@ -48,12 +48,11 @@ std::string kernel_defines(const BackendOptions& options, bool sampler) {
 
 sdf::GlobalFieldParams global_field_params(const BackendParams& params, uint64_t max_bytes) {
   sdf::GlobalFieldParams p;
-  p.voxel = params.text("global_voxel") == "auto" ? 0.0f : static_cast<float>(params.real("global_voxel"));
+  p.voxel = params.is_word("global_voxel") ? 0.0f : static_cast<float>(params.real("global_voxel"));  // auto: 0
   p.band = static_cast<uint32_t>(params.integer("brick_band"));
   p.format = sdf_format_param(params);
   p.max_bytes = max_bytes;
-  sdf::validate(p);
-  return p;
+  return p;  // each value in its declaration's range (resolve_params)
 }
 
 SdfGlobalRenderer::SdfGlobalRenderer(const BackendOptions& options)
@@ -75,17 +74,18 @@ void SdfGlobalRenderer::prepare(const Scene& scene) {
   {  // the CPU structures are freed once flattened
     const sdf::SceneSdf sdf =
         sdf::obtain_scene_sdf(scene, sdf::mesh_grid_params(options_.params), sdf::one_cell_hash(scene, field_params_.max_bytes),
-                              options_.cache, std::cerr, {field_params_});
+                              options_.cache, std::cerr, {sdf::structure_request(field_params_)});
+    const sdf::GlobalField& global_field = sdf.get<sdf::GlobalFieldStructure>().field;
     // What the kernel reads: the mesh grids (exact hits) and the global field with its lists.
-    double ms = sdf.global_field.build_ms;
-    size_t bytes = sdf.global_field.bytes();
+    double ms = global_field.build_ms;
+    size_t bytes = global_field.bytes();
     for (const sdf::MeshDistanceGrid& grid : sdf.mesh_grids) ms += grid.build_ms, bytes += grid.bytes();
     // The resolved fetch path and voxel (--global-voxel auto is the scene's) go into the row.
     std::ostringstream resolved;
-    resolved << "brick_fetch=" << (sampler_ ? "sampler" : "texel") << " voxel=" << sdf.global_field.field.voxel;
+    resolved << "brick_fetch=" << (sampler_ ? "sampler" : "texel") << " voxel=" << global_field.field.voxel;
     if (triangle_refs) {  // built with the field each time (not cached): their time is in the row
       sdf::CellTriangleRefs refs = sdf::build_cell_triangle_refs(
-          scene, sdf.global_field.field, static_cast<uint32_t>(options_.params.integer("list_split")), field_params_.max_bytes);
+          scene, global_field.field, static_cast<uint32_t>(options_.params.integer("list_split")), field_params_.max_bytes);
       ms += refs.build_ms;
       bytes += refs.bytes();
       resolved << " references=" << refs.references << " set_words=" << refs.sets.size()
@@ -96,14 +96,14 @@ void SdfGlobalRenderer::prepare(const Scene& scene) {
       ref_sets = std::move(refs.sets);
     }
     stats_ = StructureStats{ms, bytes, {}, resolved.str()};
-    stats_->instance_voxels.assign(scene.instances.size(), sdf.global_field.field.voxel);
+    stats_->instance_voxels.assign(scene.instances.size(), global_field.field.voxel);
     arrays = flatten_for_gpu(scene, sdf, tracing_);
     arrays.hash_cells = {0u};
     arrays.octree_nodes = {0u};
     arrays.instance_lists = {0u, 0u};
-    arrays.params.options.y = tracing_.hit == sdf::HitMode::field ? kFieldHitOffsetVoxels * sdf.global_field.field.voxel : 0.0f;
-    field = flatten_brick_fields({sdf.global_field.field});
-    lists = headed_table(sdf.global_field.list_begin, sdf.global_field.list_instances,
+    arrays.params.options.y = tracing_.hit == sdf::HitMode::field ? kFieldHitOffsetVoxels * global_field.field.voxel : 0.0f;
+    field = flatten_brick_fields({global_field.field});
+    lists = headed_table(global_field.list_begin, global_field.list_instances,
                          "the global field's instance lists are too long for the kernel's 32-bit indices; use a larger "
                          "--global-voxel");
   }

@@ -38,8 +38,8 @@ class SdfGlobalRenderer : public VulkanRenderer {
   VulkanFrameRunner runner_;  // declared last: destroyed first, before the buffers it binds
 };
 
-// The global field parameters of `params` (--global-voxel, --sdf-format, --brick-band); throws
-// Error for values outside their ranges.
+// The global field parameters of `params` (--global-voxel, --sdf-format, --brick-band), their
+// typed values as resolve_params checked them against their declarations.
 sdf::GlobalFieldParams global_field_params(const BackendParams& params, uint64_t max_bytes);
 
 

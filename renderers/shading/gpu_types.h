@@ -7,14 +7,20 @@
 
 #include <glm/glm.hpp>
 
-#include "work_counter_list.glsl"
+#include "renderers/work_counter_list.h"
 
 namespace sdfbench {
-// The work counters' COUNTER_<ID> and COUNTER_KINDS, as shading_types.glsl declares them for the GLSL.
-#define DECLARE_WORK_COUNTER(ID, index) inline constexpr uint32_t COUNTER_##ID = index;
-WORK_COUNTERS(DECLARE_WORK_COUNTER)
+// The work counters' COUNTER_<ID> (a line's place in WORK_COUNTER_TABLE) and COUNTER_KINDS, as the
+// kernels get them (work_counter_glsl_prelude(), renderers/work_counters.h).
+namespace counter_ids {
+#define WORK_COUNTER_ENUMERATOR(ID, ...) ID,
+enum : uint32_t { WORK_COUNTER_TABLE(WORK_COUNTER_ENUMERATOR) kinds };
+#undef WORK_COUNTER_ENUMERATOR
+}  // namespace counter_ids
+#define DECLARE_WORK_COUNTER(ID, ...) inline constexpr uint32_t COUNTER_##ID = counter_ids::ID;
+WORK_COUNTER_TABLE(DECLARE_WORK_COUNTER)
 #undef DECLARE_WORK_COUNTER
-inline constexpr uint32_t COUNTER_KINDS = 0u WORK_COUNTERS(WORK_COUNTER_PLUS_ONE);
+inline constexpr uint32_t COUNTER_KINDS = counter_ids::kinds;
 }  // namespace sdfbench
 
 namespace sdfbench::shading {

@@ -30,14 +30,20 @@
 #define STACK_SIZE (MAX_DEPTH_LIMIT + 1u)
 
 // Work counters of instrumented frames (docs/commands.md "Counters"): per pixel, summed over all its
-// rays, COUNTER_KINDS of them per pixel, COUNTER_<ID> each, as work_counter_list.glsl lists them.
-// The C++ declares the same constants in namespace sdfbench, where their users are (gpu_types.h).
+// rays, COUNTER_KINDS of them per pixel, COUNTER_<ID> each, as renderers/work_counter_list.h lists
+// them. The kernels get that list as WORK_COUNTERS(X), X(ID, index) per counter, from the defines
+// that renderers/vulkan/shader_compiler.cpp prepends to every kernel (work_counter_glsl_prelude());
+// the C++ declares the same constants in namespace sdfbench, where their users are (gpu_types.h).
 #ifndef __cplusplus
-#include "work_counter_list.glsl"
+#ifndef WORK_COUNTERS
+#error "no WORK_COUNTERS: compile the kernels with compile_shader() (renderers/vulkan/shader_compiler.h), which prepends them"
+#endif
 #define DECLARE_WORK_COUNTER(ID, index) const uint COUNTER_##ID = index;
 WORK_COUNTERS(DECLARE_WORK_COUNTER)
 #undef DECLARE_WORK_COUNTER
+#define WORK_COUNTER_PLUS_ONE(ID, index) +1u
 const uint COUNTER_KINDS = 0u WORK_COUNTERS(WORK_COUNTER_PLUS_ONE);
+#undef WORK_COUNTER_PLUS_ONE
 #endif
 #define COUNTERS_BINDING 32  // the per-pixel counters buffer: past every backend's bindings (8 and up)
 

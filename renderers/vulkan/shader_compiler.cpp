@@ -7,6 +7,7 @@
 #include <glslang/SPIRV/GlslangToSpv.h>
 
 #include "renderers/vulkan/embedded_shaders.h"
+#include "renderers/work_counters.h"
 #include "util/error.h"
 
 namespace sdfbench {
@@ -56,7 +57,11 @@ std::vector<uint32_t> compile_shader(const std::string& name, const std::string&
   const int length = static_cast<int>(it->second.size());
   const char* source_name = it->first.c_str();
   shader.setStringsWithLengthsAndNames(&source, &length, &source_name, 1);
-  shader.setPreamble(preamble.c_str());
+  // glslang reads the preamble before the source, whose #version and #extension lines still count
+  // as first: so it holds preprocessor lines only, the work counters' (every kernel gets them;
+  // shading_types.glsl needs them) and then the caller's defines.
+  const std::string defines = work_counter_glsl_prelude() + preamble;
+  shader.setPreamble(defines.c_str());
   shader.setEnvInput(glslang::EShSourceGlsl, stage, glslang::EShClientVulkan, 100);
   shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
   shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);

@@ -14,9 +14,12 @@
 #include <stdexcept>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "renderers/sdf/sdf_cache_format.h"
+#include "renderers/sdf_bricks/brick_field.h"
+#include "renderers/sdf_global/global_field.h"
 #include "util/error.h"
 
 using sdfbench::Error;
@@ -37,15 +40,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       for (uint32_t k = 0; k < leaf.list_count; ++k) (void)hash.instance_lists.at(leaf.list_begin + k);
     }
     // The brick fields as sdf-bricks walks them: one per mesh, a stored brick's atlas samples.
-    if (c.sdf.brick_params) {
-      if (c.sdf.brick_fields.size() != c.sdf.mesh_grids.size()) throw std::logic_error("brick fields do not match the meshes");
-      for (const sdf::BrickField& f : c.sdf.brick_fields)
+    if (const sdf::BrickFields* bricks = c.sdf.find<sdf::BrickFields>()) {
+      if (bricks->fields.size() != c.sdf.mesh_grids.size()) throw std::logic_error("brick fields do not match the meshes");
+      for (const sdf::BrickField& f : bricks->fields)
         for (uint32_t slot : f.indirection)
           if (slot != sdf::kEmptyBrick) (void)f.atlas.at((size_t{slot} + 1) * sdf::kBrickSamples * sdf::bytes_per_sample(f.format) - 1);
     }
     // The global field as sdf-global walks it: a brick's atlas samples and its instance list.
-    if (c.sdf.global_params) {
-      const sdf::GlobalField& g = c.sdf.global_field;
+    if (const sdf::GlobalFieldStructure* global = c.sdf.find<sdf::GlobalFieldStructure>()) {
+      const sdf::GlobalField& g = global->field;
       const size_t brick_bytes = sdf::kBrickSamples * sdf::bytes_per_sample(g.field.format);
       for (uint32_t slot : g.field.indirection) {
         if (slot == sdf::kEmptyBrick) continue;
@@ -98,7 +101,6 @@ std::vector<std::byte> seed_cache() {
   for (uint32_t k = 0; k < 8; ++k) s.hash.nodes.push_back({-1, k % 3, 1, 1});
   s.hash.nodes.push_back({-1, 0, 3, 0});
   s.hash.instance_lists = {0, 1, 2};
-  s.brick_params = sdf::BrickFieldParams{8, 2, sdf::SdfFormat::f16};
   sdf::BrickField f;
   f.origin = glm::vec3(-1.5f);
   f.voxel = 0.25f;
@@ -107,13 +109,12 @@ std::vector<std::byte> seed_cache() {
   f.indirection = {0, sdf::kEmptyBrick};
   f.atlas.assign(sdf::kBrickSamples * 2, 0);  // half 0.0
   f.coarse.assign(12, 0.5f);
-  s.brick_fields = {f};
+  s.set(sdf::BrickFields(sdf::BrickFieldParams{8, 2, sdf::SdfFormat::f16}, {f}));
   sdf::GlobalFieldParams gp;
   gp.voxel = 0.5f;
   gp.band = 2;
   gp.format = sdf::SdfFormat::f32;
-  s.global_params = gp;
-  sdf::GlobalField& global = s.global_field;
+  sdf::GlobalField global;
   global.voxel_request = 0.5f;
   global.field.origin = glm::vec3(-2.0f);
   global.field.voxel = 0.5f;
@@ -126,6 +127,7 @@ std::vector<std::byte> seed_cache() {
   global.list_begin = {0, 2};
   global.list_instances = {0, 2};
   global.build_ms = 1.0;
+  s.set(sdf::GlobalFieldStructure(gp, std::move(global)));
   return sdf::encode_sdf_cache(c);
 }
 

@@ -1,26 +1,16 @@
 #pragma once
-// What a mesh's brick field and the global field share in the cache: the brick format's
-// header values, indirection and atlas, read and checked the same way by both codecs.
+// What a mesh's brick field and the global field share in the cache: the brick format's header
+// values, indirection and atlas, read and checked the same way by both codecs (read_field is
+// defined in brick_field_codec.cpp, the brick format's codec).
 #include <cstdint>
-#include <optional>
 #include <string>
-#include <variant>
 
 #include <glm/glm.hpp>
 
-#include "renderers/sdf_bricks/brick_field.h"
 #include "renderers/sdf/cache/section_reader.h"
-#include "renderers/sdf/structure_request.h"
+#include "renderers/sdf_bricks/brick_field.h"
 
 namespace sdfbench::sdf {
-
-// A sampled field's staleness for a request: "" when the held one was built with the requested
-// parameters, else "built with <what> <held>, requested <wanted>".
-template <class Params>
-std::string field_differs(const std::optional<Params>& held, const StructureRequest& request, const std::string& what) {
-  const Params& wanted = std::get<Params>(request);
-  return same(*held, wanted) ? "" : "built with " + what + " " + describe(*held) + ", requested " + describe(wanted);
-}
 
 // Enum values as stored (SdfFormat), checked before they become enums.
 inline bool valid_format(uint32_t format) { return format <= static_cast<uint32_t>(SdfFormat::u8); }
