@@ -13,16 +13,12 @@
 
 #include "renderers/backend_registry.h"
 #include "util/error.h"
+#include "util/number_text.h"
 
 
 namespace sdfbench {
 
-std::string csv_number(double v) {
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
-}
+std::string csv_number(double v) { return six_digits(v); }
 
 namespace {
 

@@ -6,15 +6,10 @@
 #include <cstdio>
 
 #include "util/error.h"
+#include "util/number_text.h"
 
 namespace sdfbench {
 namespace {
-
-std::string short_number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
-}
 
 std::string join(const std::vector<std::string>& words, const std::string& last) {
   std::string text;
@@ -46,7 +41,7 @@ std::string describe_values(const ParamSpec& spec) {
       return words + "an integer in [" + std::to_string(static_cast<int64_t>(spec.lo)) + ", " +
              std::to_string(static_cast<int64_t>(spec.hi)) + "]";
     case ParamKind::Real:
-      return words + "a number in " + (spec.lo_open ? "(" : "[") + short_number(spec.lo) + ", " + short_number(spec.hi) + "]";
+      return words + "a number in " + (spec.lo_open ? "(" : "[") + six_digits(spec.lo) + ", " + six_digits(spec.hi) + "]";
     case ParamKind::Choice: return join(spec.choices, "or");
     case ParamKind::Flag: return "0 (off) or 1 (on)";
   }
@@ -82,7 +77,7 @@ std::optional<TypedParam> parse_param(const ParamSpec& spec, const std::string& 
   }
   // A real is used as it is recorded: rounded to the CSV's 6 digits, then checked (so a value
   // below the range's resolution is refused, not measured as another one).
-  const std::string canonical = short_number(v);
+  const std::string canonical = six_digits(v);
   const double used = std::strtod(canonical.c_str(), nullptr);
   if (!in_range(spec, used)) return why = expected, std::nullopt;
   return TypedParam{canonical, used};
@@ -119,13 +114,13 @@ ParamSpec with_choices(ParamSpec spec, const std::vector<std::string>& choices, 
 const ParamSpec& find_spec(const std::vector<ParamSpec>& specs, const std::string& name) {
   for (const ParamSpec& spec : specs)
     if (spec.name == name) return spec;
-  throw Error("internal: no parameter '" + name + "' is declared");
+  throw InternalError("no parameter '" + name + "' is declared");
 }
 
 namespace {
 
 [[noreturn]] void undeclared(const std::string& name) {
-  throw Error("internal: parameter '" + name + "' read by a backend that does not declare it (renderers/backend_registry.h)");
+  throw InternalError("parameter '" + name + "' read by a backend that does not declare it in its BackendInfo::params");
 }
 
 const char* kind_name(const ParamValue& value) {
@@ -140,7 +135,7 @@ const char* kind_name(const ParamValue& value) {
 template <typename T>
 T typed_as(const std::string& name, const ParamValue& value, const char* wanted) {
   if (const T* v = std::get_if<T>(&value)) return *v;
-  throw Error("internal: parameter '" + name + "' read as " + wanted + ", but its value is " + kind_name(value));
+  throw InternalError("parameter '" + name + "' read as " + wanted + ", but its value is " + kind_name(value));
 }
 
 }  // namespace
@@ -161,8 +156,8 @@ const ParamValue& BackendParams::value(const std::string& name) const {
   const auto it = typed_.find(name);
   if (it != typed_.end()) return it->second;
   if (!has(name)) undeclared(name);
-  throw Error("internal: parameter '" + name + "' ('" + text(name) +
-              "') read before it was resolved against its declaration (resolve_params, renderers/backend_registry.h)");
+  throw InternalError("parameter '" + name + "' ('" + text(name) +
+                      "') read before it was resolved against its declaration (resolve_params)");
 }
 
 int64_t BackendParams::integer(const std::string& name) const { return typed_as<int64_t>(name, value(name), "an integer"); }

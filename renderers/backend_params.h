@@ -61,7 +61,7 @@ std::string describe_values(const ParamSpec& spec);
 // `spec` with another default or a narrower set of choices (a backend's own view of a shared parameter).
 ParamSpec with_default(ParamSpec spec, const std::string& default_value);
 ParamSpec with_choices(ParamSpec spec, const std::vector<std::string>& choices, const std::string& default_value);
-// The spec named `name` in `specs`; throws Error("internal: ...") when there is none.
+// The spec named `name` in `specs`; throws InternalError when there is none.
 const ParamSpec& find_spec(const std::vector<ParamSpec>& specs, const std::string& name);
 
 // Parameter values by name. On the command side: the values given, as text (a test's, a CSV row's

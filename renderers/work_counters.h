@@ -47,16 +47,11 @@ const std::string& work_counter_glsl_prelude();
 
 // Which counters a backend has: bit k for COUNTER kind k.
 inline constexpr uint32_t counter_bit(uint32_t kind) { return 1u << kind; }
-// SDF backends: triangle_tests are the exact hit's ray-triangle tests (--hit exact).
+// The exact SDF backends (a backend with other counters declares its own set in its folder):
+// triangle_tests are the exact hit's ray-triangle tests (--hit exact).
 inline constexpr uint32_t kSdfCounters = counter_bit(COUNTER_STEPS) | counter_bit(COUNTER_INSTANCE_EVALS) |
                                          counter_bit(COUNTER_TRIANGLE_EVALS) | counter_bit(COUNTER_AABB_TESTS) |
                                          counter_bit(COUNTER_TRIANGLE_TESTS) | counter_bit(COUNTER_OUT_OF_STEPS);
-// sdf-bricks: no point-triangle distances; trilinear field samples instead.
-inline constexpr uint32_t kBrickCounters = counter_bit(COUNTER_STEPS) | counter_bit(COUNTER_INSTANCE_EVALS) |
-                                           counter_bit(COUNTER_FIELD_SAMPLES) | counter_bit(COUNTER_AABB_TESTS) |
-                                           counter_bit(COUNTER_TRIANGLE_TESTS) | counter_bit(COUNTER_OUT_OF_STEPS);
-// sdf-global: also the reference cells whose triangle set was tested (--exact-lists triangles).
-inline constexpr uint32_t kGlobalCounters = kBrickCounters | counter_bit(COUNTER_CELL_SETS);
 inline constexpr uint32_t kTriAabbCounters = counter_bit(COUNTER_AABB_TESTS) | counter_bit(COUNTER_TRIANGLE_TESTS);
 inline constexpr uint32_t kBvhCounters = kTriAabbCounters;  // node child boxes tested, triangles tested
 

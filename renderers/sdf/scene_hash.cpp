@@ -12,6 +12,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include "util/error.h"
+#include "util/number_text.h"
 #include "util/input_file.h"
 #include "util/progress.h"
 
@@ -171,12 +172,6 @@ Aabb octant(const Aabb& box, int k) {
   return child;
 }
 
-std::string short_number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", v);
-  return text;
-}
-
 // What every cell's octree build shares: the memory the octrees hold so far, against the cap
 // (a deep octree with a tiny --octree-min-size grows without end), and the progress line.
 struct OctreeBudget {
@@ -189,7 +184,7 @@ struct OctreeBudget {
     if (total > params.max_bytes)
       throw Error("the scene hash's octrees need more than " + describe_bytes(params.max_bytes) +
                   " (--max-structure-mb " + std::to_string(params.max_bytes >> 20) + ") at --octree-depth " +
-                  std::to_string(params.octree_depth) + " --octree-min-size " + short_number(params.octree_min_size) +
+                  std::to_string(params.octree_depth) + " --octree-min-size " + six_digits(params.octree_min_size) +
                   "; lower --octree-depth, raise --octree-min-size, --octree-min-objects or --hash-cell, or raise --max-structure-mb");
     if ((total >> 24) != ((total - more) >> 24))  // every 16 MiB: a line when one cell takes long
       progress.advance(0, [&] { return describe_bytes(total) + " of octrees"; });
@@ -230,8 +225,8 @@ void validate(const SceneHashParams& p) {
   // (cache/scene_hash_codec.cpp), and what depends on the scene is scene_hash_dims'.
   if (!(p.hash_cell > 0.0f) || !std::isfinite(p.hash_cell) || !(p.octree_min_size > 0.0f) ||
       !std::isfinite(p.octree_min_size) || p.octree_depth > 16)
-    throw Error("internal: a scene hash of cell " + short_number(p.hash_cell) + ", octree depth " +
-                std::to_string(p.octree_depth) + " and min node size " + short_number(p.octree_min_size) +
+    throw InternalError("a scene hash of cell " + six_digits(p.hash_cell) + ", octree depth " +
+                std::to_string(p.octree_depth) + " and min node size " + six_digits(p.octree_min_size) +
                 " (sizes must be positive and finite, the depth at most 16)");
 }
 
@@ -251,10 +246,10 @@ glm::uvec3 scene_hash_dims(const Scene& scene, const SceneHashParams& params) {
   const glm::dvec3 cells = glm::max(glm::ceil(glm::dvec3(extent) / static_cast<double>(params.hash_cell)), glm::dvec3(1.0));
   const double total = cells.x * cells.y * cells.z;
   if (!(total <= static_cast<double>(kMaxHashCells)))
-    throw Error("--hash-cell " + short_number(params.hash_cell) + " gives " + short_number(cells.x) + " x " +
-                short_number(cells.y) + " x " + short_number(cells.z) + " = " + short_number(total) +
-                " cells over the instances' bounds (" + short_number(extent.x) + " x " + short_number(extent.y) + " x " +
-                short_number(extent.z) + "), more than the limit of " + std::to_string(kMaxHashCells) +
+    throw Error("--hash-cell " + six_digits(params.hash_cell) + " gives " + six_digits(cells.x) + " x " +
+                six_digits(cells.y) + " x " + six_digits(cells.z) + " = " + six_digits(total) +
+                " cells over the instances' bounds (" + six_digits(extent.x) + " x " + six_digits(extent.y) + " x " +
+                six_digits(extent.z) + "), more than the limit of " + std::to_string(kMaxHashCells) +
                 "; use a larger --hash-cell or keep the instances closer together");
   return glm::uvec3(cells);
 }

@@ -42,7 +42,7 @@ void validate(const BrickFieldParams& params) {
   // brick_field_tables.cpp; checked where a value is parsed), and a cache file's values are checked
   // where they are decoded (brick_field_codec.cpp).
   if (params.voxels < 4 || params.voxels > kMaxVoxels || params.band < 1 || params.band > 16)
-    throw Error("internal: a brick field of " + std::to_string(params.voxels) + " voxels and band " +
+    throw InternalError("a brick field of " + std::to_string(params.voxels) + " voxels and band " +
                 std::to_string(params.band) + " (voxels from 4 to " + std::to_string(kMaxVoxels) +
                 ", band from 1 to 16 voxels)");
 }

@@ -13,6 +13,12 @@
 namespace sdfbench {
 namespace {
 
+// No point-triangle distances: trilinear field samples instead.
+constexpr uint32_t kBrickCounters = counter_bit(COUNTER_STEPS) | counter_bit(COUNTER_INSTANCE_EVALS) |
+                                    counter_bit(COUNTER_FIELD_SAMPLES) | counter_bit(COUNTER_AABB_TESTS) |
+                                    counter_bit(COUNTER_TRIANGLE_TESTS) | counter_bit(COUNTER_OUT_OF_STEPS);
+
+
 std::string kernel_defines(const BackendOptions& options, bool sampler) {
   std::string defines = brick_kernel_defines(options, sampler);
   if (options.params.text("brick_trace") == "min") defines += "#define BRICK_TRACE_MIN 1\n";

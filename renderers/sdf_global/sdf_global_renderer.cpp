@@ -17,6 +17,14 @@
 namespace sdfbench {
 namespace {
 
+// sdf-bricks' counters (field samples, no point-triangle distances) and the reference cells whose
+// triangle set was tested (--exact-lists triangles).
+constexpr uint32_t kGlobalCounters = counter_bit(COUNTER_STEPS) | counter_bit(COUNTER_INSTANCE_EVALS) |
+                                     counter_bit(COUNTER_FIELD_SAMPLES) | counter_bit(COUNTER_AABB_TESTS) |
+                                     counter_bit(COUNTER_TRIANGLE_TESTS) | counter_bit(COUNTER_OUT_OF_STEPS) |
+                                     counter_bit(COUNTER_CELL_SETS);
+
+
 // A table as sdf_global.comp reads it: per stored brick a word that is where its part starts in the
 // same buffer (`heads`, offsets into `body`, moved past the heads; kNoCellTable stays), then the
 // body. The instance lists: heads s and s + 1 bound stored brick s's instances; --exact-lists
