@@ -157,7 +157,7 @@ const ParamValue& BackendParams::value(const std::string& name) const {
   if (it != typed_.end()) return it->second;
   if (!has(name)) undeclared(name);
   throw InternalError("parameter '" + name + "' ('" + text(name) +
-                      "') read before it was resolved against its declaration (resolve_params)");
+                        "') read before it was resolved against its declaration (resolve_params)");
 }
 
 int64_t BackendParams::integer(const std::string& name) const { return typed_as<int64_t>(name, value(name), "an integer"); }

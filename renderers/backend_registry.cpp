@@ -146,7 +146,7 @@ BackendParams resolve_params(const BackendInfo& backend, const BackendParams& gi
       const std::optional<TypedParam> value = parse_param(spec, spec.default_value, why);
       if (!value || value->text != spec.default_value)
         throw InternalError(backend.name + " declares " + spec.name + " with the default '" + spec.default_value +
-                    "', " + (value ? "which it records as '" + value->text + "'" : why));
+                        "', " + (value ? "which it records as '" + value->text + "'" : why));
       resolved.set(spec.name, *value);
       continue;
     }

@@ -226,8 +226,8 @@ void validate(const SceneHashParams& p) {
   if (!(p.hash_cell > 0.0f) || !std::isfinite(p.hash_cell) || !(p.octree_min_size > 0.0f) ||
       !std::isfinite(p.octree_min_size) || p.octree_depth > 16)
     throw InternalError("a scene hash of cell " + six_digits(p.hash_cell) + ", octree depth " +
-                std::to_string(p.octree_depth) + " and min node size " + six_digits(p.octree_min_size) +
-                " (sizes must be positive and finite, the depth at most 16)");
+                        std::to_string(p.octree_depth) + " and min node size " + six_digits(p.octree_min_size) +
+                        " (sizes must be positive and finite, the depth at most 16)");
 }
 
 namespace {

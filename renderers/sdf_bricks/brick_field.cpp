@@ -43,8 +43,8 @@ void validate(const BrickFieldParams& params) {
   // where they are decoded (brick_field_codec.cpp).
   if (params.voxels < 4 || params.voxels > kMaxVoxels || params.band < 1 || params.band > 16)
     throw InternalError("a brick field of " + std::to_string(params.voxels) + " voxels and band " +
-                std::to_string(params.band) + " (voxels from 4 to " + std::to_string(kMaxVoxels) +
-                ", band from 1 to 16 voxels)");
+                        std::to_string(params.band) + " (voxels from 4 to " + std::to_string(kMaxVoxels) +
+                        ", band from 1 to 16 voxels)");
 }
 
 

@@ -84,7 +84,7 @@ void validate(const GlobalFieldParams& params) {
   // parsed), and a cache file's values are checked where they are decoded (global_field_codec.cpp).
   if (!(params.voxel >= 0.0f) || !std::isfinite(params.voxel) || params.band < 1 || params.band > 16)
     throw InternalError("a global field of voxel " + std::to_string(params.voxel) + " (0: auto) and band " +
-                std::to_string(params.band) + " (the voxel must be finite and >= 0, the band from 1 to 16 voxels)");
+                        std::to_string(params.band) + " (the voxel must be finite and >= 0, the band from 1 to 16 voxels)");
 }
 
 float auto_global_voxel(const Scene& scene) {
