@@ -18,7 +18,7 @@ const std::vector<std::string>& counter_fields() {
   static const std::vector<std::string> fields = [] {
     std::vector<std::string> f = {"mrays_per_s", "fps", "rays_per_pixel"};
     f.insert(f.end(), counter_columns().begin(), counter_columns().end());
-    f.insert(f.end(), {"prepare_ms", "build_ms", "structure_bytes", "hit_agreement", "id_agreement", "psnr", "depth_p99",
+    f.insert(f.end(), {"prepare_ms", "build_ms", "structure_bytes", "tree_sah", "tree_epo", "tree_nodes", "hit_agreement", "id_agreement", "psnr", "depth_p99",
                        "depth_p99_voxels", "overlap", "frames", "load_avg", "cpu_steal_pct"});
     return f;
   }();

@@ -144,6 +144,9 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
     m.backend_resolved = stats->resolved;
     m.build_ms = stats->build_ms;
     m.structure_bytes = static_cast<double>(stats->bytes);
+    m.tree_sah = stats->sah;
+    m.tree_epo = stats->epo;
+    if (stats->nodes) m.tree_nodes = static_cast<double>(*stats->nodes);
   }
 
   // Frames until the budget would be exceeded by one more (estimated by the last frame's wall time).

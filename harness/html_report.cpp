@@ -316,8 +316,10 @@ void rows_table(std::ostringstream& out, const ReportFile& file, size_t f) {
     const std::string voxels = r["depth_p99_voxels"].empty() ? "" : "<br>" + cell(r, "depth_p99_voxels", 3) + " voxels";
     out << "</td><td>" << fps_cell(r, verdict) << "</td><td>" << cell(r, "mrays_per_s", 3) << "</td><td>"
         << cell(r, "build_ms", 0) << "</td><td>"
-        << (r["structure_bytes"].empty() ? "–" : fixed(r.number("structure_bytes") / 1e6, 1)) << "</td><td>"
-        << cell(r, "hit_agreement", 2) << "</td><td>" << cell(r, "id_agreement", 2) << "</td><td>"
+        << (r["structure_bytes"].empty() ? "–" : fixed(r.number("structure_bytes") / 1e6, 1))
+        << (r["tree_sah"].empty() ? "" : "<br>SAH " + cell(r, "tree_sah", 1) + "<br>EPO " + cell(r, "tree_epo", 2) + "<br>" +
+                                             cell(r, "tree_nodes", 0) + " nodes")
+        << "</td><td>" << cell(r, "hit_agreement", 2) << "</td><td>" << cell(r, "id_agreement", 2) << "</td><td>"
         << (r["depth_p99"].empty() ? "–" : escape(r["depth_p99"])) << voxels << "</td><td>" << cell(r, "psnr", 1) << "</td><td>"
         << escape(r["agreement"])
         << (verdict.marks.empty() ? "" : "<br><span class=\"why\">" + escape(verdict.reasons()) + "</span>")

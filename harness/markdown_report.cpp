@@ -274,7 +274,10 @@ void sweep_table(std::ostringstream& out, const std::vector<Row>& rows) {
   for (CounterGroup group : {CounterGroup::evaluations, CounterGroup::tests})
     for (const CounterInfo& c : counter_table())
       if (c.group == group) optional.push_back({counter_columns()[c.id].c_str(), c.label, 1, 1});
-  optional.insert(optional.end(), {{"hit_agreement", "hit %", 2, 1},
+  optional.insert(optional.end(), {{"tree_sah", "SAH cost", 1, 1},
+                                   {"tree_epo", "EPO", 2, 1},
+                                   {"tree_nodes", "BVH nodes", 0, 1},
+                                   {"hit_agreement", "hit %", 2, 1},
                                    {"id_agreement", "id %", 2, 1},
                                    {"depth_p99_voxels", "depth p99 (voxels)", 3, 1},
                                    {"psnr", "PSNR dB", 1, 1}});

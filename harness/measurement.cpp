@@ -62,7 +62,7 @@ const std::vector<Column>& csv_columns() {
     for (uint32_t k = 0; k < COUNTER_KINDS; ++k)
       c.push_back({counter_columns()[k], [k](const Measurement& m) { return cell(m.per_ray[k]); }});
     c.insert(c.end(), {FIELD_COLUMN(prepare_ms), FIELD_COLUMN(build_ms), FIELD_COLUMN(structure_bytes),
-                       FIELD_COLUMN(backend_resolved), FIELD_COLUMN(check_size), FIELD_COLUMN(hit_agreement),
+                       FIELD_COLUMN(tree_sah), FIELD_COLUMN(tree_epo), FIELD_COLUMN(tree_nodes), FIELD_COLUMN(backend_resolved), FIELD_COLUMN(check_size), FIELD_COLUMN(hit_agreement),
                        FIELD_COLUMN(id_agreement), FIELD_COLUMN(psnr), FIELD_COLUMN(depth_p99),
                        FIELD_COLUMN(depth_p99_voxels), FIELD_COLUMN(agreement), FIELD_COLUMN(budget_cut),
                        FIELD_COLUMN(load_avg), FIELD_COLUMN(cpu_steal_pct), FIELD_COLUMN(cpu_other_pct), FIELD_COLUMN(busy),

@@ -44,7 +44,8 @@ struct Measurement {
   // empty: the backend has no such counter
   std::array<std::optional<double>, COUNTER_KINDS> per_ray;
   double prepare_ms = 0;                                 // renderer prepare(): structure build or cache load + upload
-  std::optional<double> build_ms, structure_bytes;       // SDF structures
+  std::optional<double> build_ms, structure_bytes;       // built structures (SDF, BVH)
+  std::optional<double> tree_sah, tree_epo, tree_nodes;  // a BVH's quality (renderers/bvh/bvh_quality.h)
   std::string backend_resolved;  // what the backend chose for its "auto" parameters (StructureStats::resolved)
   // agreement with the reference backend at the check size
   std::string check_size;

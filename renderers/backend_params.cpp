@@ -168,4 +168,12 @@ bool BackendParams::flag(const std::string& name) const { return typed_as<bool>(
 
 bool BackendParams::is_word(const std::string& name) const { return std::holds_alternative<std::string>(value(name)); }
 
+const ParamSpec& max_structure_mb_param() {
+  static const ParamSpec spec{"max_structure_mb", ParamKind::Integer, std::to_string(kDefaultMaxStructureBytes >> 20),
+                              "memory cap of each structure a backend builds (an SDF's cell lists, octrees or sampled field; "
+                              "bvh's flat tree): a build that would pass it stops with an error",
+                              "structures", {}, 1, 16384};
+  return spec;
+}
+
 }  // namespace sdfbench

@@ -36,6 +36,11 @@ struct ParamSpec {
 
 std::string flag_of(const ParamSpec& spec);  // "--hash-cell"
 
+// --max-structure-mb, the memory cap of a structure a backend builds (an SDF's lists, octrees or
+// sampled field; bvh's flat tree): one declaration, which every backend that builds one owns.
+inline constexpr uint64_t kDefaultMaxStructureBytes = uint64_t(2048) << 20;
+const ParamSpec& max_structure_mb_param();
+
 // A value as its declaration makes it: Integer -> int64_t, Real -> double (the value the canonical
 // text reads back as), Flag -> bool, and a word (a Choice, or a word an Integer or Real accepts:
 // --global-voxel auto) -> std::string.

@@ -69,8 +69,8 @@ struct FrameResult {
   FrameImages images;       // filled when FrameRequest::readback
 };
 
-// What an SDF backend's structures cost (mesh grids + scene hash): build time (as built, also
-// when they came from the cache) and payload bytes.
+// What a backend's structures cost (an SDF's mesh grids + scene hash, a BVH's trees): build time
+// (as built, also when they came from the cache) and payload bytes.
 struct StructureStats {
   double build_ms = 0;
   uint64_t bytes = 0;
@@ -80,6 +80,9 @@ struct StructureStats {
   // What the backend chose for a parameter given as "auto" ("brick_fetch=sampler"); the CSV's
   // backend_resolved column.
   std::string resolved;
+  // A BVH's quality (renderers/bvh/bvh_quality.h): SAH cost, end-point overlap, inner nodes.
+  std::optional<double> sah, epo;
+  std::optional<uint64_t> nodes;
 };
 
 class Renderer {

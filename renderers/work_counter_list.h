@@ -17,10 +17,11 @@
   X(STEPS, steps, "steps/ray", evaluations, "sdf-*", "sphere-tracing steps: scene-distance queries along a ray, inside the hash box") \
   X(INSTANCE_EVALS, instance_evals, "instance evals/ray", evaluations, "sdf-*", "instance distance evaluations: a mesh grid queried in an instance's frame (sdf-bricks: an instance traced over a segment, or evaluated at a step with `--brick-trace min`; sdf-global: a listed instance tested exactly over a window)") \
   X(TRIANGLE_EVALS, triangle_evals, "triangle evals/ray", evaluations, "sdf-hash, sdf-octree, sdf-cpu", "point-triangle distances computed") \
-  X(AABB_TESTS, aabb_tests, "AABB tests/ray", tests, "tri-aabb, bvh, sdf-*", "tri-aabb: ray-box slab tests (every instance, per closest-hit ray); bvh: child boxes tested (2 per node visited, both levels); SDF: a listed instance's box tested against the best distance so far, which skips the instance when no nearer") \
+  X(AABB_TESTS, aabb_tests, "AABB tests/ray", tests, "tri-aabb, bvh, sdf-*", "tri-aabb: ray-box slab tests (every instance, per closest-hit ray); bvh: child boxes tested (the node width per node visited, both levels); SDF: a listed instance's box tested against the best distance so far, which skips the instance when no nearer") \
   X(TRIANGLE_TESTS, triangle_tests, "triangle tests/ray", tests, "tri-aabb, bvh, sdf-*", "ray-triangle tests (Möller–Trumbore): tri-aabb's and bvh's traversal; the SDF backends' exact hit (`--hit exact`)") \
   X(OUT_OF_STEPS, out_of_steps, "out of steps/ray", rays, "sdf-*", "rays whose march ended by `--max-steps` (per ray: the fraction of rays); with `--hit exact` the rest of such a ray's segment is tested against the instance it last converged on") \
   X(FIELD_SAMPLES, field_samples, "field samples/ray", evaluations, "sdf-bricks, sdf-global", "trilinear samples of a brick field (8 texels or one filtered fetch; in an empty brick 8 coarse texels, sdf-global: one)") \
   X(CELL_SETS, cell_sets, "cell sets/ray", evaluations, "sdf-global", "reference cells whose (instance, triangle) set was tested (`--exact-lists triangles`; 0 with the instance lists)") \
+  X(NODE_VISITS, node_visits, "nodes/ray", tests, "bvh", "BVH nodes visited, both levels (each tests all its child boxes: aabb_tests = the node width x node_visits)") \
   /* a new counter: a line above this one */
 // clang-format on

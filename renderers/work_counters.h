@@ -53,7 +53,8 @@ inline constexpr uint32_t kSdfCounters = counter_bit(COUNTER_STEPS) | counter_bi
                                          counter_bit(COUNTER_TRIANGLE_EVALS) | counter_bit(COUNTER_AABB_TESTS) |
                                          counter_bit(COUNTER_TRIANGLE_TESTS) | counter_bit(COUNTER_OUT_OF_STEPS);
 inline constexpr uint32_t kTriAabbCounters = counter_bit(COUNTER_AABB_TESTS) | counter_bit(COUNTER_TRIANGLE_TESTS);
-inline constexpr uint32_t kBvhCounters = kTriAabbCounters;  // node child boxes tested, triangles tested
+// node child boxes tested, triangles tested, nodes visited
+inline constexpr uint32_t kBvhCounters = kTriAabbCounters | counter_bit(COUNTER_NODE_VISITS);
 
 // Sums `pixel_counts` (COUNTER_KINDS per pixel) over the frame for the counters in `kinds`.
 WorkCounters sum_counters(const std::vector<uint32_t>& pixel_counts, uint32_t kinds);

@@ -76,7 +76,7 @@ TEST(MeasurementColumns, MatchTheDocumentedListAndFieldCount) {
                                "reference", "requested_device", "whitted_passes", "validate", "frames", "ms_median", "ms_min", "ms_max",
                                "fps", "mrays_per_s", "steps_per_ray", "instance_evals_per_ray", "triangle_evals_per_ray",
                                "aabb_tests_per_ray", "triangle_tests_per_ray", "out_of_steps_per_ray",
-                               "build_ms", "structure_bytes", "hit_agreement", "id_agreement", "psnr", "budget_cut",
+                               "build_ms", "structure_bytes", "tree_sah", "tree_epo", "tree_nodes", "node_visits_per_ray", "hit_agreement", "id_agreement", "psnr", "budget_cut",
                                "device", "driver", "embree", "cpu", "threads", "commit"})
     EXPECT_NE(std::find(c.begin(), c.end(), required), c.end()) << required;
   EXPECT_EQ(to_csv_fields(Measurement{}).size(), c.size());

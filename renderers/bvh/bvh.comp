@@ -1,195 +1,240 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
-// bvh: a two-level BVH traversed in the compute kernel (bvh_builder.h: Embree's SAH builder,
-// the node layout of Aila & Laine 2009). The top level holds the instances' world boxes, one
-// instance per leaf; at a leaf the ray goes into the instance's frame and down its mesh's BVH.
-// Both levels test a node's two child boxes together and descend into the nearer one, the
-// farther one pushed with its entry distance, and skipped when popped beyond the nearest hit.
-// Möller–Trumbore as tri-aabb, so hits agree with Embree to rounding. A level's stack holds
-// BVH_STACK_SIZE entries, defined by the renderer as the scene's deepest BVH rounded up to 8 (so
-// that scenes share kernels): a traversal pushes at most one entry per level it descends, so it
-// never overflows. A traversal visits each node at most once, so it stops after as many visits as
-// its level's table holds nodes (read from the table: no per-scene kernel), whatever the data
-// holds; BVH_VISIT_LIMIT (tests only) lowers that. Running out of either would count the pixel as
-// cut short, never silently wrong.
+// bvh: a BVH of 2, 4 or 8 children a node traversed in the compute kernel (bvh_builder.h: Embree's
+// SAH builder; bvh_layouts.h: the node layouts). One node table holds every mesh's BVH and then
+// the top level's; a top-level leaf is one entry (an instance and a node of its mesh's BVH: its
+// root, or with --bvh-top rebraided a node opened into the top level), so the traversal is one
+// loop over items (a node, and the instance whose frame it is in; TOP for top-level nodes). A
+// visit tests all of a node's child boxes, tests the triangles of the leaves the ray enters, and
+// goes on with the nearest inner child or entry, the others pushed farthest first with their
+// entry distances and skipped when popped beyond the nearest hit. --bvh-top flat: one level over
+// every triangle in world space (instance 0 of the tables is the identity; flat_ids names the
+// real instance). Möller–Trumbore as tri-aabb, so hits agree with Embree to rounding. The stack
+// holds BVH_STACK_SIZE items (the renderer sizes it by the trees' depths: a visit pushes at most
+// width - 1, so it never overflows); the visits are bounded by the header's bound (each top node
+// once, each entry's mesh nodes once), whatever the tables hold; BVH_VISIT_LIMIT (tests only)
+// lowers it. Running out of either counts the pixel as cut short, never silently wrong.
 
 #include "frame_bindings.glsl"
 #include "triangle_tables.glsl"
 
-layout(binding = 11) uniform textureBuffer mesh_nodes;  // every mesh's BVH (root: TriInstance info.w), 4 texels a node
-layout(binding = 12) uniform textureBuffer top_nodes;   // the instances' BVH, root 0
+#ifndef BVH_WIDTH
+#define BVH_WIDTH 2
+#endif
+#ifndef BVH_QUANTISED
+#define BVH_QUANTISED 0
+#endif
+#ifndef BVH_FLAT
+#define BVH_FLAT 0
+#endif
+#define BVH_QUADS (BVH_WIDTH >= 4 ? BVH_WIDTH / 4 : 1)  // groups of 4 children (one vec4 of boxes each)
+#define BVH_AILA_LAINE (BVH_WIDTH == 2 && BVH_QUANTISED == 0)
+#if BVH_AILA_LAINE
+#define BVH_NODE_TEXELS 4
+#elif BVH_QUANTISED
+#define BVH_NODE_TEXELS (2 + (6 * BVH_QUADS + 3) / 4)
+#else
+#define BVH_NODE_TEXELS (1 + 6 * BVH_QUADS)
+#endif
+
+layout(binding = 11) uniform utextureBuffer bvh_nodes;    // the meshes' BVHs, then the top level's
+layout(binding = 12) uniform utextureBuffer bvh_entries;  // texel 0: (top root, visit bound); then (instance, mesh node) per top-level reference
+layout(binding = 13) uniform utextureBuffer flat_ids;     // --bvh-top flat: (instance, triangle, material) per triangle slot
 
 bool traversal_cut = false;
 #define TRAVERSAL_OVERFLOW traversal_cut
 
 const float MISS = 3.4e38f;
+const uint TOP = 0xFFFFFFFFu;  // the instance of a top-level item: the ray in world space
 
-// The most node visits a traversal of a table may make: its node count (4 texels a node).
-uint visit_bound(uint nodes) {
-#ifdef BVH_VISIT_LIMIT
-  return min(nodes, BVH_VISIT_LIMIT);
-#else
-  return nodes;
-#endif
-}
-
-// Does the ray enter a child (its entry from box_entry) before tmax? MISS never does, also when
+// Does the ray enter a child (its entry from box_entries) before tmax? MISS never does, also when
 // tmax is not below it.
 bool enters(float t, float tmax) {
   return t <= tmax && t < MISS;
 }
 
-// Where the ray enters the box within [0, tmax] (o_inv = origin * inv_dir), or MISS.
-float box_entry(vec3 lo, vec3 hi, vec3 inv_dir, vec3 o_inv, float tmax) {
-  vec3 t0 = lo * inv_dir - o_inv;
-  vec3 t1 = hi * inv_dir - o_inv;
-  vec3 near = min(t0, t1);
-  vec3 far = max(t0, t1);
-  float enter = max(max(near.x, near.y), max(near.z, 0.0f));
-  float leave = min(min(far.x, far.y), min(far.z, tmax));
-  return enter <= leave ? enter : MISS;
+// Where the ray enters each of 4 boxes within [0, tmax] (o_inv = origin * inv_dir), or MISS.
+vec4 box_entries(vec4 lox, vec4 loy, vec4 loz, vec4 hix, vec4 hiy, vec4 hiz, vec3 inv_dir, vec3 o_inv, float tmax) {
+  vec4 x0 = lox * inv_dir.x - o_inv.x, x1 = hix * inv_dir.x - o_inv.x;
+  vec4 y0 = loy * inv_dir.y - o_inv.y, y1 = hiy * inv_dir.y - o_inv.y;
+  vec4 z0 = loz * inv_dir.z - o_inv.z, z1 = hiz * inv_dir.z - o_inv.z;
+  vec4 enter = max(max(min(x0, x1), min(y0, y1)), max(min(z0, z1), vec4(0.0f)));
+  vec4 leave = min(min(max(x0, x1), max(y0, y1)), min(max(z0, z1), vec4(tmax)));
+  return mix(vec4(MISS), enter, lessThanEqual(enter, leave));
 }
 
-// One node of either level: its two children's entries, indices and counts (0: an inner node).
-struct NodeVisit {
-  float t[2];
-  uint child[2];
-  uint count[2];
+// A node's children: entry distance (MISS: not entered, or an empty slot), and an inner node's
+// index (count 0) or a leaf's first reference and count.
+struct Children {
+  float t[BVH_WIDTH];
+  uint node[BVH_WIDTH];
+  uint count[BVH_WIDTH];
 };
 
-NodeVisit visit(vec4 a, vec4 b, vec4 c, vec4 d, vec3 inv_dir, vec3 o_inv, float tmax) {
-  COUNT(COUNTER_AABB_TESTS, 2u);
-  NodeVisit v;
-  v.t[0] = box_entry(a.xyz, b.xyz, inv_dir, o_inv, tmax);
-  v.t[1] = box_entry(c.xyz, d.xyz, inv_dir, o_inv, tmax);
-  v.child[0] = floatBitsToUint(a.w);
-  v.child[1] = floatBitsToUint(b.w);
-  v.count[0] = floatBitsToUint(c.w);
-  v.count[1] = floatBitsToUint(d.w);
-  return v;
+#if BVH_AILA_LAINE
+void decode(uint n, vec3 inv_dir, vec3 o_inv, float tmax, out Children c) {
+  int base = 4 * int(n);
+  uvec4 a = texelFetch(bvh_nodes, base), b = texelFetch(bvh_nodes, base + 1);
+  uvec4 p = texelFetch(bvh_nodes, base + 2), q = texelFetch(bvh_nodes, base + 3);
+  vec4 t = box_entries(vec4(uintBitsToFloat(a.x), uintBitsToFloat(p.x), 0, 0), vec4(uintBitsToFloat(a.y), uintBitsToFloat(p.y), 0, 0),
+                       vec4(uintBitsToFloat(a.z), uintBitsToFloat(p.z), 0, 0), vec4(uintBitsToFloat(b.x), uintBitsToFloat(q.x), 0, 0),
+                       vec4(uintBitsToFloat(b.y), uintBitsToFloat(q.y), 0, 0), vec4(uintBitsToFloat(b.z), uintBitsToFloat(q.z), 0, 0),
+                       inv_dir, o_inv, tmax);
+  c.t[0] = t.x;
+  c.t[1] = t.y;
+  c.node[0] = a.w;
+  c.node[1] = b.w;
+  c.count[0] = p.w;
+  c.count[1] = q.w;
 }
+#else
+vec4 unpack_bytes(uint w) { return vec4(uvec4(w, w >> 8, w >> 16, w >> 24) & 0xFFu); }
 
-// The nearest (or, for `any`, some) triangle of instance `inst` with t < tmax, the ray in the
-// instance's frame; tmax, slot and uv are updated on a hit. visit_limit: visit_bound of the mesh table.
-bool trace_mesh(uint inst, vec3 o, vec3 d, bool any, uint visit_limit, inout float tmax, inout uint slot, inout vec2 uv) {
+void decode(uint n, vec3 inv_dir, vec3 o_inv, float tmax, out Children c) {
+  int base = BVH_NODE_TEXELS * int(n);
+  uvec4 info = texelFetch(bvh_nodes, base);  // first inner child, first reference, 8 meta bytes
+#if BVH_QUANTISED
+  uvec4 h = texelFetch(bvh_nodes, base + 1);  // the grid's corner and exponents
+  vec3 origin = uintBitsToFloat(h.xyz);
+  vec3 scale = uintBitsToFloat((uvec3(h.w, h.w >> 8, h.w >> 16) & 0xFFu) << 23u);  // 2^e, e biased by 127
+  uint words[4 * ((6 * BVH_QUADS + 3) / 4)];
+  for (int i = 0; i < (6 * BVH_QUADS + 3) / 4; ++i) {
+    uvec4 w = texelFetch(bvh_nodes, base + 2 + i);
+    words[4 * i] = w.x;
+    words[4 * i + 1] = w.y;
+    words[4 * i + 2] = w.z;
+    words[4 * i + 3] = w.w;
+  }
+#endif
+  for (int q = 0; q < BVH_QUADS; ++q) {
+#if BVH_QUANTISED
+    vec4 lox = origin.x + unpack_bytes(words[q]) * scale.x;
+    vec4 loy = origin.y + unpack_bytes(words[BVH_QUADS + q]) * scale.y;
+    vec4 loz = origin.z + unpack_bytes(words[2 * BVH_QUADS + q]) * scale.z;
+    vec4 hix = origin.x + unpack_bytes(words[3 * BVH_QUADS + q]) * scale.x;
+    vec4 hiy = origin.y + unpack_bytes(words[4 * BVH_QUADS + q]) * scale.y;
+    vec4 hiz = origin.z + unpack_bytes(words[5 * BVH_QUADS + q]) * scale.z;
+#else
+    vec4 lox = uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + q));
+    vec4 loy = uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + BVH_QUADS + q));
+    vec4 loz = uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + 2 * BVH_QUADS + q));
+    vec4 hix = uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + 3 * BVH_QUADS + q));
+    vec4 hiy = uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + 4 * BVH_QUADS + q));
+    vec4 hiz = uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + 5 * BVH_QUADS + q));
+#endif
+    vec4 t = box_entries(lox, loy, loz, hix, hiy, hiz, inv_dir, o_inv, tmax);
+    for (int j = 0; j < 4 && 4 * q + j < BVH_WIDTH; ++j) c.t[4 * q + j] = t[j];
+  }
+  for (int k = 0; k < BVH_WIDTH; ++k) {
+    uint meta = (info[2 + k / 4] >> (8 * (k % 4))) & 0xFFu;
+    uint kind = meta >> 5;
+    c.count[k] = kind == 7u ? 0u : kind;
+    c.node[k] = (kind == 7u ? info.x : info.y) + (meta & 31u);
+    if (meta == 0u) c.t[k] = MISS;
+  }
+}
+#endif
+
+// The scene's nearest (or, for `any`, some) triangle hit with t < tmax: its instance (of the
+// tables), slot and uv.
+bool trace_scene(Ray ray, bool any, inout float tmax, out uint inst, out uint slot, out vec2 uv) {
+  uvec4 header = texelFetch(bvh_entries, 0);
+#ifdef BVH_VISIT_LIMIT
+  const uint visit_bound = min(header.y, BVH_VISIT_LIMIT);
+#else
+  const uint visit_bound = header.y;
+#endif
+  uint node = header.x;
+  uint item = BVH_FLAT != 0 ? 0u : TOP;  // the current node's instance
+  uint frame = item;                     // whose frame o, d are in
+  vec3 o = ray.origin, d = ray.dir;
   vec3 inv_dir = safe_inverse(d);
   vec3 o_inv = o * inv_dir;
-  int first = int(instances[inst].info.x);
   uint stack_node[BVH_STACK_SIZE];
+  uint stack_item[BVH_STACK_SIZE];
   float stack_t[BVH_STACK_SIZE];
   uint sp = 0u;
-  uint node = instances[inst].info.w;
   bool found = false;
+  inst = NO_INSTANCE;
+  slot = 0u;
+  uv = vec2(0.0f);
   for (uint visits = 0u;; ++visits) {
-    if (visits == visit_limit) {
+    if (visits >= visit_bound) {
       traversal_cut = true;
       break;
     }
-    int base = 4 * int(node);
-    NodeVisit v = visit(texelFetch(mesh_nodes, base), texelFetch(mesh_nodes, base + 1), texelFetch(mesh_nodes, base + 2),
-                        texelFetch(mesh_nodes, base + 3), inv_dir, o_inv, tmax);
-    // Leaves now (they are never pushed); an inner child waits for the decision below.
-    for (int k = 0; k < 2; ++k) {
-      if (v.count[k] == 0u || !enters(v.t[k], tmax)) continue;
-      for (uint r = v.child[k]; r < v.child[k] + v.count[k]; ++r) {
+    if (item != frame) {
+      frame = item;
+      o = item == TOP ? ray.origin : vec3(instances[item].world_to_object * vec4(ray.origin, 1.0f));
+      d = item == TOP ? ray.dir : vec3(instances[item].world_to_object * vec4(ray.dir, 0.0f));
+      inv_dir = safe_inverse(d);
+      o_inv = o * inv_dir;
+    }
+    COUNT(COUNTER_NODE_VISITS, 1u);
+    COUNT(COUNTER_AABB_TESTS, uint(BVH_WIDTH));
+    Children c;
+    decode(node, inv_dir, o_inv, tmax, c);
+    uint child_item[BVH_WIDTH];
+    for (int k = 0; k < BVH_WIDTH; ++k) {
+      child_item[k] = item;
+      if (c.count[k] == 0u || !enters(c.t[k], tmax)) continue;
+      if (item == TOP) {  // a top-level leaf: its entry is an item in its instance's frame
+        uvec4 entry = texelFetch(bvh_entries, 1 + int(c.node[k]));
+        child_item[k] = entry.x;
+        c.node[k] = entry.y;
+        c.count[k] = 0u;
+        continue;
+      }
+      int first = int(instances[item].info.x);
+      for (uint r = c.node[k]; r < c.node[k] + c.count[k]; ++r) {
         float t;
         vec2 bary;
         if (hits_triangle(o, d, 3 * (first + int(r)), tmax, t, bary)) {
           tmax = t;
+          inst = item;
           slot = r;
           uv = bary;
           found = true;
           if (any) return true;
         }
       }
-      v.t[k] = MISS;
+      c.t[k] = MISS;
     }
-    bool hit0 = enters(v.t[0], tmax), hit1 = enters(v.t[1], tmax);
-    if (hit0 && hit1) {
-      uint near = v.t[0] <= v.t[1] ? 0u : 1u;
-      if (sp < BVH_STACK_SIZE) {
-        stack_node[sp] = v.child[1u - near];
-        stack_t[sp] = v.t[1u - near];
-        ++sp;
-      } else {
-        traversal_cut = true;
+    // The entered inner children and entries, nearest first.
+    int order[BVH_WIDTH];
+    int entered = 0;
+    for (int k = 0; k < BVH_WIDTH; ++k) {
+      if (c.count[k] != 0u || !enters(c.t[k], tmax)) continue;
+      int at = entered++;
+      while (at > 0 && c.t[order[at - 1]] > c.t[k]) {
+        order[at] = order[at - 1];
+        --at;
       }
-      node = v.child[near];
+      order[at] = k;
+    }
+    if (entered > 0) {
+      for (int i = entered - 1; i > 0; --i) {
+        if (sp < BVH_STACK_SIZE) {
+          stack_node[sp] = c.node[order[i]];
+          stack_item[sp] = child_item[order[i]];
+          stack_t[sp] = c.t[order[i]];
+          ++sp;
+        } else {
+          traversal_cut = true;
+        }
+      }
+      node = c.node[order[0]];
+      item = child_item[order[0]];
       continue;
     }
-    if (hit0 || hit1) {
-      node = v.child[hit0 ? 0 : 1];
-      continue;
-    }
-    // Pop the next subtree the ray still enters before the nearest hit.
+    // Pop the next item the ray still enters before the nearest hit.
     bool next = false;
     while (sp > 0u && !next) {
       --sp;
       next = enters(stack_t[sp], tmax);
       node = stack_node[sp];
-    }
-    if (!next) break;
-  }
-  return found;
-}
-
-// The scene's nearest (or some) triangle hit with t < tmax: its instance, slot and uv.
-bool trace_scene(Ray ray, bool any, inout float tmax, out uint inst, out uint slot, out vec2 uv) {
-  vec3 inv_dir = safe_inverse(ray.dir);
-  vec3 o_inv = ray.origin * inv_dir;
-  uint stack_node[BVH_STACK_SIZE];
-  float stack_t[BVH_STACK_SIZE];
-  uint sp = 0u;
-  uint node = 0u;
-  bool found = false;
-  inst = NO_INSTANCE;
-  slot = 0u;
-  uv = vec2(0.0f);
-  const uint visit_limit = visit_bound(uint(textureSize(top_nodes)) / 4u);
-  const uint mesh_visit_limit = visit_bound(uint(textureSize(mesh_nodes)) / 4u);  // once a ray, not once an instance
-  for (uint visits = 0u;; ++visits) {
-    if (visits == visit_limit) {
-      traversal_cut = true;
-      break;
-    }
-    int base = 4 * int(node);
-    NodeVisit v = visit(texelFetch(top_nodes, base), texelFetch(top_nodes, base + 1), texelFetch(top_nodes, base + 2),
-                        texelFetch(top_nodes, base + 3), inv_dir, o_inv, tmax);
-    for (int k = 0; k < 2; ++k) {
-      if (v.count[k] == 0u || !enters(v.t[k], tmax)) continue;
-      uint i = v.child[k];  // a leaf: one instance
-      vec3 o = vec3(instances[i].world_to_object * vec4(ray.origin, 1.0f));
-      vec3 d = vec3(instances[i].world_to_object * vec4(ray.dir, 0.0f));
-      if (trace_mesh(i, o, d, any, mesh_visit_limit, tmax, slot, uv)) {
-        inst = i;
-        found = true;
-        if (any) return true;
-      }
-      v.t[k] = MISS;
-    }
-    bool hit0 = enters(v.t[0], tmax), hit1 = enters(v.t[1], tmax);
-    if (hit0 && hit1) {
-      uint near = v.t[0] <= v.t[1] ? 0u : 1u;
-      if (sp < BVH_STACK_SIZE) {
-        stack_node[sp] = v.child[1u - near];
-        stack_t[sp] = v.t[1u - near];
-        ++sp;
-      } else {
-        traversal_cut = true;
-      }
-      node = v.child[near];
-      continue;
-    }
-    if (hit0 || hit1) {
-      node = v.child[hit0 ? 0 : 1];
-      continue;
-    }
-    bool next = false;
-    while (sp > 0u && !next) {
-      --sp;
-      next = enters(stack_t[sp], tmax);
-      node = stack_node[sp];
+      item = stack_item[sp];
     }
     if (!next) break;
   }
@@ -202,6 +247,12 @@ bool closest_hit(Ray ray, float tmax, out Hit hit) {
   vec2 uv;
   if (!trace_scene(ray, false, t, inst, slot, uv)) return false;
   fill_triangle_hit(inst, slot, uv, t, hit);
+#if BVH_FLAT
+  uvec4 id = texelFetch(flat_ids, int(slot));  // the table's one instance is the identity
+  hit.instance = id.x;
+  hit.prim = id.y;
+  hit.material = id.z;
+#endif
   return true;
 }
 

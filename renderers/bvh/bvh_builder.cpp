@@ -15,8 +15,9 @@ struct BuildNode {
   bool leaf;
 };
 struct InnerNode : BuildNode {
-  BuildNode* children[2];
-  Aabb bounds[2];
+  unsigned child_count;
+  BuildNode* children[kMaxBvhWidth];
+  Aabb bounds[kMaxBvhWidth];
 };
 struct LeafNode : BuildNode {
   uint32_t count;
@@ -30,18 +31,19 @@ struct BuildContext {
 void* create_node(RTCThreadLocalAllocator allocator, unsigned, void*) {
   auto* node = static_cast<InnerNode*>(rtcThreadLocalAlloc(allocator, sizeof(InnerNode), 16));
   node->leaf = false;
-  node->children[0] = node->children[1] = nullptr;
+  node->child_count = 0;
   return node;
 }
 
 void set_node_children(void* node, void** children, unsigned child_count, void*) {
   auto* inner = static_cast<InnerNode*>(node);
-  for (unsigned i = 0; i < child_count && i < 2; ++i) inner->children[i] = static_cast<BuildNode*>(children[i]);
+  inner->child_count = std::min(child_count, kMaxBvhWidth);
+  for (unsigned i = 0; i < inner->child_count; ++i) inner->children[i] = static_cast<BuildNode*>(children[i]);
 }
 
 void set_node_bounds(void* node, const RTCBounds** bounds, unsigned child_count, void*) {
   auto* inner = static_cast<InnerNode*>(node);
-  for (unsigned i = 0; i < child_count && i < 2; ++i) {
+  for (unsigned i = 0; i < child_count && i < kMaxBvhWidth; ++i) {
     inner->bounds[i].min = {bounds[i]->lower_x, bounds[i]->lower_y, bounds[i]->lower_z};
     inner->bounds[i].max = {bounds[i]->upper_x, bounds[i]->upper_y, bounds[i]->upper_z};
   }
@@ -68,36 +70,27 @@ void split_primitive(const RTCBuildPrimitive* primitive, unsigned dimension, flo
 }
 
 
-// Depth-first: a node, then its left subtree, then its right.
+// Depth-first: a node, then its children's subtrees in order (so every subtree is one range of
+// nodes and one range of references).
 class Flattener {
  public:
-  explicit Flattener(FlatBvh& out) : out_(out) {}
+  explicit Flattener(BvhTree& out) : out_(out) {}
 
   // Appends `node` (and its subtree); returns its index.
   uint32_t inner(const InnerNode* node, uint32_t depth) {
     out_.depth = std::max(out_.depth, depth);
     const uint32_t index = static_cast<uint32_t>(out_.nodes.size());
     out_.nodes.emplace_back();
-    const Child l = child(node->children[0], node->bounds[0], depth);
-    const Child r = child(node->children[1], node->bounds[1], depth);
-    out_.nodes[index] = BvhNode{glm::vec4(l.box.min, glm::uintBitsToFloat(l.index)), glm::vec4(l.box.max, glm::uintBitsToFloat(r.index)),
-                                glm::vec4(r.box.min, glm::uintBitsToFloat(l.count)), glm::vec4(r.box.max, glm::uintBitsToFloat(r.count))};
+    BvhTreeNode flat;
+    flat.child_count = node->child_count;
+    for (unsigned i = 0; i < node->child_count; ++i) flat.children[i] = child(node->children[i], node->bounds[i], depth);
+    out_.nodes[index] = flat;
     return index;
   }
 
  private:
-  struct Child {
-    Aabb box;
-    uint32_t index = 0;  // inner node index, or first reference of a leaf
-    uint32_t count = 1;  // 0: inner node
-  };
-
-  Child child(const BuildNode* node, const Aabb& box, uint32_t depth) {
-    Child c;
-    if (!node) {  // empty: a point at (FLT_MAX, FLT_MAX, FLT_MAX), which no ray reaches within its tmax
-      c.box.min = c.box.max = glm::vec3(std::numeric_limits<float>::max());
-      return c;
-    }
+  BvhChild child(const BuildNode* node, const Aabb& box, uint32_t depth) {
+    BvhChild c;
     c.box = box;
     if (node->leaf) {
       const auto* leaf = static_cast<const LeafNode*>(node);
@@ -111,8 +104,7 @@ class Flattener {
     return c;
   }
 
- private:
-  FlatBvh& out_;
+  BvhTree& out_;
 };
 
 }  // namespace
@@ -142,9 +134,12 @@ void split_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, 
   right.min[dimension] = std::max(right.min[dimension], position);
 }
 
-FlatBvh build_bvh(RTCDevice device, const std::vector<Aabb>& boxes, const BvhBuildParams& params,
+BvhTree build_bvh(RTCDevice device, const std::vector<Aabb>& boxes, const BvhBuildParams& params,
                   const SplitPrimitive& split) {
-  FlatBvh flat;
+  if (params.width < 2 || params.width > kMaxBvhWidth) throw InternalError("bvh: width " + std::to_string(params.width));
+  BvhTree flat;
+  flat.width = params.width;
+  for (const Aabb& b : boxes) flat.bounds.extend(b);
   if (boxes.empty()) {
     Flattener f(flat);
     InnerNode none{};
@@ -166,7 +161,7 @@ FlatBvh build_bvh(RTCDevice device, const std::vector<Aabb>& boxes, const BvhBui
   args.byteSize = sizeof(args);
   args.buildQuality = splits ? RTC_BUILD_QUALITY_HIGH : (params.quality == RTC_BUILD_QUALITY_LOW ? RTC_BUILD_QUALITY_LOW
                                                                                                    : RTC_BUILD_QUALITY_MEDIUM);
-  args.maxBranchingFactor = 2;
+  args.maxBranchingFactor = params.width;
   args.maxDepth = params.max_depth;
   args.sahBlockSize = 1;
   args.minLeafSize = 1;
@@ -192,8 +187,9 @@ FlatBvh build_bvh(RTCDevice device, const std::vector<Aabb>& boxes, const BvhBui
   if (root->leaf) {  // a single leaf: under a root of its own
     InnerNode top{};
     top.leaf = false;
+    top.child_count = 1;
     top.children[0] = const_cast<BuildNode*>(root);
-    for (size_t i = 0; i < boxes.size(); ++i) top.bounds[0].extend(boxes[i]);
+    top.bounds[0] = flat.bounds;
     f.inner(&top, 1);
   } else {
     f.inner(static_cast<const InnerNode*>(root), 1);
@@ -202,7 +198,7 @@ FlatBvh build_bvh(RTCDevice device, const std::vector<Aabb>& boxes, const BvhBui
   return flat;
 }
 
-FlatBvh build_mesh_bvh(RTCDevice device, const Mesh& mesh, const BvhBuildParams& params) {
+BvhTree build_mesh_bvh(RTCDevice device, const Mesh& mesh, const BvhBuildParams& params) {
   std::vector<Aabb> boxes(mesh.triangles.size());
   for (size_t i = 0; i < boxes.size(); ++i)
     for (int k = 0; k < 3; ++k) boxes[i].extend(mesh.positions[mesh.triangles[i][k]]);

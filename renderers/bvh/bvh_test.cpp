@@ -1,6 +1,6 @@
-// bvh, the two-level BVH in a compute kernel: images agree with Embree on every thesis mesh in
-// every mode, a scene built to make its BVH deep traces with no stack overflow and no miss, and
-// the builder's flattened trees hold every primitive inside its leaves' boxes.
+// bvh, the BVH in a compute kernel: images agree with Embree on every thesis mesh in every mode,
+// and a scene built to make its BVH deep traces with no stack overflow and no miss (the trees'
+// invariants and quality figures: bvh_tree_test.cpp; every layout and top level: bvh_layouts_test.cpp).
 #include <algorithm>
 #include <limits>
 #include <set>
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "harness/image_agreement.h"
-#include "renderers/bvh/bvh_builder.h"
+#include "renderers/backend_registry.h"
 #include "renderers/bvh/bvh_renderer.h"
 #include "renderers/embree/embree_api.h"
 #include "renderers/shading/gpu_types.h"
@@ -65,7 +65,10 @@ TEST(Bvh, DeepInstanceTreeTracesWithoutOverflow) {
     scene.instances.push_back(s);
   }
   scene.camera = {.position = {-1.0f, 0.6f, -1.0f}, .look_at = {0.05f, 0.02f, 0.05f}, .up = {0, 1, 0}, .fov_y_degrees = 40};
-  BvhRenderer renderer{BackendOptions{}};
+  BackendOptions options;
+  options.params.set("bvh_width", "2");
+  const std::unique_ptr<Renderer> created = create_renderer("bvh", options);
+  auto& renderer = dynamic_cast<BvhRenderer&>(*created);
   renderer.prepare(scene);
   EXPECT_GT(renderer.depths().top, 10u) << "the scene was meant to make a deep instance BVH";
   for (RenderMode mode : {RenderMode::Primary, RenderMode::Shadow}) {
@@ -84,48 +87,6 @@ TEST(Bvh, DeepInstanceTreeTracesWithoutOverflow) {
   renderer.limit_stack_for_testing(3);
   renderer.prepare(scene);
   EXPECT_GT(renderer.render(FrameRequest{64, 36, RenderMode::Primary, true}).truncated_pixels, 0u);
-}
-
-// Every primitive is referenced by some leaf, and each leaf's box contains what it references
-// (its part, for split triangles: the whole triangle need not fit).
-TEST(BvhBuilder, LeavesCoverEveryPrimitive) {
-  RTCDevice device = rtcNewDevice("threads=2");
-  const Mesh mesh = load_obj(builtin_mesh_path("teapot"), "teapot");
-  std::vector<Aabb> boxes(mesh.triangles.size());
-  for (size_t i = 0; i < boxes.size(); ++i)
-    for (int k = 0; k < 3; ++k) boxes[i].extend(mesh.positions[mesh.triangles[i][k]]);
-  for (bool splits : {false, true}) {
-    const FlatBvh bvh = splits ? build_mesh_bvh(device, mesh, BvhBuildParams{}) : build_bvh(device, boxes, BvhBuildParams{});
-    std::set<uint32_t> seen(bvh.references.begin(), bvh.references.end());
-    EXPECT_EQ(seen.size(), boxes.size()) << "splits " << splits;
-    if (!splits) {
-      EXPECT_EQ(bvh.references.size(), boxes.size());
-    }
-    EXPECT_GT(bvh.depth, 5u);
-    EXPECT_LE(bvh.depth, 64u);
-    // Without splits a leaf's box holds its triangles whole.
-    if (!splits) {
-      for (const BvhNode& n : bvh.nodes) {
-        const glm::vec4* boxes_of[2][2] = {{&n.left_min, &n.left_max}, {&n.right_min, &n.right_max}};
-        const float counts[2] = {n.right_min.w, n.right_max.w};
-        const float children[2] = {n.left_min.w, n.left_max.w};
-        for (int c = 0; c < 2; ++c) {
-          const uint32_t count = glm::floatBitsToUint(counts[c]), first = glm::floatBitsToUint(children[c]);
-          for (uint32_t r = first; count > 0 && r < first + count; ++r) {
-            const Aabb& b = boxes[bvh.references[r]];
-            EXPECT_TRUE(glm::all(glm::greaterThanEqual(b.min, glm::vec3(*boxes_of[c][0]))));
-            EXPECT_TRUE(glm::all(glm::lessThanEqual(b.max, glm::vec3(*boxes_of[c][1]))));
-          }
-        }
-      }
-    }
-  }
-  // No primitives: a root whose two children are points no ray reaches.
-  const FlatBvh none = build_bvh(device, {}, BvhBuildParams{});
-  ASSERT_EQ(none.nodes.size(), 1u);
-  EXPECT_EQ(none.nodes[0].left_min.x, std::numeric_limits<float>::max());
-  EXPECT_EQ(none.nodes[0].right_max.z, std::numeric_limits<float>::max());
-  rtcReleaseDevice(device);
 }
 
 TEST(Bvh, SceneWithoutInstancesDrawsTheFloor) {

@@ -23,6 +23,7 @@
 
 #include <glm/glm.hpp>
 
+#include "renderers/backend_params.h"
 #include "renderers/sdf/triangle_distance.h"
 #include "scenes/mesh.h"
 
@@ -36,9 +37,9 @@ enum class MeshGridRule {
   sphere,  // dist(T, centre) <= d_c + 2h only: docs/design.md's cheap rule, kept for comparison
 };
 
-// Default memory cap of one SDF structure (a mesh grid's cell lists, the scene hash's octrees):
-// --max-structure-mb. The Vulkan backends' 31-bit words and the 4 GiB cache sit beyond it.
-inline constexpr uint64_t kDefaultMaxStructureBytes = uint64_t(2048) << 20;
+// kDefaultMaxStructureBytes (renderers/backend_params.h): the default memory cap of one SDF
+// structure (a mesh grid's cell lists, the scene hash's octrees), --max-structure-mb. The Vulkan
+// backends' 31-bit words and the 4 GiB cache sit beyond it.
 
 // Large meshes (the mesh-size axis): a fixed resolution would put ever more triangles in every
 // cell, so beyond kScaledGridFromTriangles the cells per extent grow as sqrt(triangles) (a

@@ -52,10 +52,7 @@ const std::vector<ParamSpec>& sdf_param_specs() {
        "the structure's tables in storage buffers instead of texel buffers (the same data and images; which is faster "
        "depends on the device)",
        tracing},
-      {"max_structure_mb", K::Integer, std::to_string(kDefaultMaxStructureBytes >> 20),
-       "memory cap of each SDF structure (a mesh grid's lists, the scene hash's octrees, a sampled field): a build that "
-       "would pass it stops with an error",
-       structures, {}, 1, 16384},
+      max_structure_mb_param(),
   };
   return specs;
 }
