@@ -95,7 +95,7 @@ const FrameImages& BenchmarkRunner::reference(const BenchConfig& config) {
   const std::string key = to_string(config.mode) + " " + std::to_string(config.max_depth);
   auto it = references_.find(key);
   if (it != references_.end()) return it->second;
-  std::unique_ptr<Renderer> renderer = create_renderer(settings_.reference, config.options);
+  std::unique_ptr<Renderer> renderer = create_renderer(settings_.reference, reference_options(settings_.reference, config.options));
   renderer->prepare(scene(config.scene));
   FrameRequest request{settings_.check_size.width, settings_.check_size.height, config.mode, true, config.max_depth};
   return references_.emplace(key, std::move(renderer->render(request).images)).first->second;
@@ -119,7 +119,7 @@ void BenchmarkRunner::keep_images(const BenchConfig& config, size_t run_index, c
   const std::string stem = run_id_.substr(0, 8) + "-" + index + "-" + file_name_part(config.scene) + "-" +
                            file_name_part(config.backend) + "-" + to_string(config.mode);
   const std::filesystem::path dir = settings_.keep_images;
-  const FrameImages& ref = config.backend == settings_.reference ? frame : reference(config);
+  const FrameImages& ref = is_reference_configuration(config.backend, settings_.reference, config.options) ? frame : reference(config);
   write_color_image(frame, dir / (stem + ".frame.png"));
   write_color_image(ref, dir / (stem + ".reference.png"));
   write_difference_map(frame, ref, dir / (stem + ".diff.png"));
@@ -199,7 +199,7 @@ Measurement BenchmarkRunner::run(const BenchConfig& config, size_t run_index) {
   for (uint32_t k = 0; k < COUNTER_KINDS; ++k)
     if (checked.counters[k] && checked.rays > 0)
       m.per_ray[k] = static_cast<double>(*checked.counters[k]) / static_cast<double>(checked.rays);
-  if (config.backend == settings_.reference) {
+  if (is_reference_configuration(config.backend, settings_.reference, config.options)) {
     m.agreement = "reference";
   } else {
     const Agreement g = compare_frames(checked.images, reference(config), stats ? stats->instance_voxels : std::vector<float>{});

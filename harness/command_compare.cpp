@@ -46,7 +46,8 @@ void run_compare(const CompareArgs& args) {
   std::vector<std::string> run = backends;
   if (std::find(run.begin(), run.end(), args.reference) == run.end()) run.push_back(args.reference);
   check_options_taken(args.backend_options, run);
-  if (std::none_of(backends.begin(), backends.end(), [&](const std::string& b) { return b != args.reference; }))
+  if (std::none_of(backends.begin(), backends.end(),
+                   [&](const std::string& b) { return !is_reference_configuration(b, args.reference, args.backend_options); }))
     throw Error("--backends '" + args.backends + "' lists only the reference (" + args.reference +
                 "): nothing to compare; add another backend, e.g. " + args.reference + ",tri-aabb");
   if (!args.out_dir.empty() && !std::filesystem::is_directory(args.out_dir))
@@ -67,14 +68,15 @@ void run_compare(const CompareArgs& args) {
             << "reference  " << args.reference << "\n\n";
 
   std::string device;
-  const FrameImages reference = render_once(args.reference, args.backend_options, scene, request, device);
+  const FrameImages reference =
+      render_once(args.reference, reference_options(args.reference, args.backend_options), scene, request, device);
   if (!args.out_dir.empty()) write_color_image(reference, std::filesystem::path(args.out_dir) / (args.reference + ".png"));
 
   std::printf("%-12s %8s %8s %11s %10s %9s %9s %8s  %s\n", "backend", "hit %", "id %", "depth p99", "mean err",
               "RMS", "PSNR dB", ">0.05 %", "result");
   int failures = 0;
   for (const std::string& backend : backends) {
-    if (backend == args.reference) continue;
+    if (is_reference_configuration(backend, args.reference, args.backend_options)) continue;
     std::vector<float> voxels;
     const FrameImages images = render_once(backend, args.backend_options, scene, request, device, &voxels);
     if (!args.out_dir.empty()) write_color_image(images, std::filesystem::path(args.out_dir) / (backend + ".png"));

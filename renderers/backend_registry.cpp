@@ -177,4 +177,17 @@ std::unique_ptr<Renderer> create_renderer(const std::string& name, const Backend
   return info.create(own);
 }
 
+BackendOptions reference_options(const std::string& reference, const BackendOptions& options) {
+  BackendOptions out = options;
+  for (const ParamSpec& spec : backend_info(reference).params) out.params.erase(spec.name);
+  return out;
+}
+
+bool is_reference_configuration(const std::string& backend, const std::string& reference, const BackendOptions& options) {
+  if (backend != reference) return false;
+  const BackendParams resolved = resolve_params(backend_info(backend), options.params);
+  const BackendParams defaults = resolve_params(backend_info(backend), BackendParams{});
+  return resolved == defaults;
+}
+
 }  // namespace sdfbench

@@ -43,6 +43,15 @@ BackendParams resolve_params(const BackendInfo& backend, const BackendParams& gi
 // The resolved parameters that its CSV row records (those whose only_when condition holds).
 std::map<std::string, std::string> recorded_params(const BackendInfo& backend, const BackendParams& resolved);
 
+// The reference's options: the run's, with the reference backend's own parameters at their
+// defaults (the frame every image is checked against is always the reference configuration,
+// embree's single rays over instances, whatever the run asks of that backend).
+BackendOptions reference_options(const std::string& reference, const BackendOptions& options);
+// Is `backend` with these options the reference itself (the reference backend, its own
+// parameters given at their defaults, if at all)? Another configuration of it is checked like
+// any backend.
+bool is_reference_configuration(const std::string& backend, const std::string& reference, const BackendOptions& options);
+
 // Creates the backend with its own parameters resolved from options.params (resolve_params).
 std::unique_ptr<Renderer> create_renderer(const std::string& name, const BackendOptions& options);
 

@@ -64,16 +64,38 @@ vec4 box_entries(vec4 lox, vec4 loy, vec4 loz, vec4 hix, vec4 hiy, vec4 hiz, vec
   return mix(vec4(MISS), enter, lessThanEqual(enter, leave));
 }
 
-// A node's children: entry distance (MISS: not entered, or an empty slot), and an inner node's
-// index (count 0) or a leaf's first reference and count.
-struct Children {
+// Every child slot of a node, unrolled (the kernel indexes its per-child values by constants
+// only: lavapipe keeps them in registers, where a variable index would spill them).
+#if BVH_WIDTH == 2
+#define EACH_CHILD(X) X(0) X(1)
+#elif BVH_WIDTH == 4
+#define EACH_CHILD(X) X(0) X(1) X(2) X(3)
+#else
+#define EACH_CHILD(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7)
+#endif
+
+// A visited node: each child's entry distance (MISS: not entered, or an empty slot), and the
+// node's links, from which a child's index and count follow (child_link).
+struct Node {
   float t[BVH_WIDTH];
-  uint node[BVH_WIDTH];
-  uint count[BVH_WIDTH];
+  uvec4 links;  // Aila-Laine: (child 0, child 1, count 0, count 1); wide: (first inner child, first reference, 8 meta bytes)
 };
 
+// Child k's index (an inner node, or a leaf's first reference) and count (0: an inner node).
+void child_link(uvec4 links, int k, out uint index, out uint count) {
 #if BVH_AILA_LAINE
-void decode(uint n, vec3 inv_dir, vec3 o_inv, float tmax, out Children c) {
+  index = k == 0 ? links.x : links.y;
+  count = k == 0 ? links.z : links.w;
+#else
+  uint meta = ((k < 4 ? links.z : links.w) >> (8 * (k & 3))) & 0xFFu;
+  uint kind = meta >> 5;
+  count = kind == 7u ? 0u : kind;
+  index = (kind == 7u ? links.x : links.y) + (meta & 31u);
+#endif
+}
+
+#if BVH_AILA_LAINE
+void decode(uint n, vec3 inv_dir, vec3 o_inv, float tmax, out Node node) {
   int base = 4 * int(n);
   uvec4 a = texelFetch(bvh_nodes, base), b = texelFetch(bvh_nodes, base + 1);
   uvec4 p = texelFetch(bvh_nodes, base + 2), q = texelFetch(bvh_nodes, base + 3);
@@ -81,59 +103,82 @@ void decode(uint n, vec3 inv_dir, vec3 o_inv, float tmax, out Children c) {
                        vec4(uintBitsToFloat(a.z), uintBitsToFloat(p.z), 0, 0), vec4(uintBitsToFloat(b.x), uintBitsToFloat(q.x), 0, 0),
                        vec4(uintBitsToFloat(b.y), uintBitsToFloat(q.y), 0, 0), vec4(uintBitsToFloat(b.z), uintBitsToFloat(q.z), 0, 0),
                        inv_dir, o_inv, tmax);
-  c.t[0] = t.x;
-  c.t[1] = t.y;
-  c.node[0] = a.w;
-  c.node[1] = b.w;
-  c.count[0] = p.w;
-  c.count[1] = q.w;
+  node.t[0] = t.x;
+  node.t[1] = t.y;
+  node.links = uvec4(a.w, b.w, p.w, q.w);
 }
 #else
 vec4 unpack_bytes(uint w) { return vec4(uvec4(w, w >> 8, w >> 16, w >> 24) & 0xFFu); }
 
-void decode(uint n, vec3 inv_dir, vec3 o_inv, float tmax, out Children c) {
+void decode(uint n, vec3 inv_dir, vec3 o_inv, float tmax, out Node node) {
   int base = BVH_NODE_TEXELS * int(n);
-  uvec4 info = texelFetch(bvh_nodes, base);  // first inner child, first reference, 8 meta bytes
+  node.links = texelFetch(bvh_nodes, base);
 #if BVH_QUANTISED
   uvec4 h = texelFetch(bvh_nodes, base + 1);  // the grid's corner and exponents
   vec3 origin = uintBitsToFloat(h.xyz);
   vec3 scale = uintBitsToFloat((uvec3(h.w, h.w >> 8, h.w >> 16) & 0xFFu) << 23u);  // 2^e, e biased by 127
-  uint words[4 * ((6 * BVH_QUADS + 3) / 4)];
-  for (int i = 0; i < (6 * BVH_QUADS + 3) / 4; ++i) {
-    uvec4 w = texelFetch(bvh_nodes, base + 2 + i);
-    words[4 * i] = w.x;
-    words[4 * i + 1] = w.y;
-    words[4 * i + 2] = w.z;
-    words[4 * i + 3] = w.w;
-  }
+  uvec4 w0 = texelFetch(bvh_nodes, base + 2), w1 = texelFetch(bvh_nodes, base + 3);
+#if BVH_WIDTH == 8
+  uvec4 w2 = texelFetch(bvh_nodes, base + 4);
+  // words: lo.x lo.x lo.y lo.y lo.z lo.z hi.x hi.x hi.y hi.y hi.z hi.z (children 0-3, 4-7)
+  uint lx[2] = uint[2](w0.x, w0.y), ly[2] = uint[2](w0.z, w0.w), lz[2] = uint[2](w1.x, w1.y);
+  uint hx[2] = uint[2](w1.z, w1.w), hy[2] = uint[2](w2.x, w2.y), hz[2] = uint[2](w2.z, w2.w);
+#else
+  uint lx[1] = uint[1](w0.x), ly[1] = uint[1](w0.y), lz[1] = uint[1](w0.z);
+  uint hx[1] = uint[1](w0.w), hy[1] = uint[1](w1.x), hz[1] = uint[1](w1.y);
+#endif
 #endif
   for (int q = 0; q < BVH_QUADS; ++q) {
 #if BVH_QUANTISED
-    vec4 lox = origin.x + unpack_bytes(words[q]) * scale.x;
-    vec4 loy = origin.y + unpack_bytes(words[BVH_QUADS + q]) * scale.y;
-    vec4 loz = origin.z + unpack_bytes(words[2 * BVH_QUADS + q]) * scale.z;
-    vec4 hix = origin.x + unpack_bytes(words[3 * BVH_QUADS + q]) * scale.x;
-    vec4 hiy = origin.y + unpack_bytes(words[4 * BVH_QUADS + q]) * scale.y;
-    vec4 hiz = origin.z + unpack_bytes(words[5 * BVH_QUADS + q]) * scale.z;
+    vec4 t = box_entries(origin.x + unpack_bytes(lx[q]) * scale.x, origin.y + unpack_bytes(ly[q]) * scale.y,
+                         origin.z + unpack_bytes(lz[q]) * scale.z, origin.x + unpack_bytes(hx[q]) * scale.x,
+                         origin.y + unpack_bytes(hy[q]) * scale.y, origin.z + unpack_bytes(hz[q]) * scale.z, inv_dir, o_inv, tmax);
 #else
-    vec4 lox = uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + q));
-    vec4 loy = uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + BVH_QUADS + q));
-    vec4 loz = uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + 2 * BVH_QUADS + q));
-    vec4 hix = uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + 3 * BVH_QUADS + q));
-    vec4 hiy = uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + 4 * BVH_QUADS + q));
-    vec4 hiz = uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + 5 * BVH_QUADS + q));
+    vec4 t = box_entries(uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + q)),
+                         uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + BVH_QUADS + q)),
+                         uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + 2 * BVH_QUADS + q)),
+                         uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + 3 * BVH_QUADS + q)),
+                         uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + 4 * BVH_QUADS + q)),
+                         uintBitsToFloat(texelFetch(bvh_nodes, base + 1 + 5 * BVH_QUADS + q)), inv_dir, o_inv, tmax);
 #endif
-    vec4 t = box_entries(lox, loy, loz, hix, hiy, hiz, inv_dir, o_inv, tmax);
-    for (int j = 0; j < 4 && 4 * q + j < BVH_WIDTH; ++j) c.t[4 * q + j] = t[j];
+    if (q == 0) {
+      node.t[0] = t.x;
+      node.t[1] = t.y;
+#if BVH_WIDTH >= 4
+      node.t[2] = t.z;
+      node.t[3] = t.w;
+#endif
+    }
+#if BVH_WIDTH == 8
+    if (q == 1) {
+      node.t[4] = t.x;
+      node.t[5] = t.y;
+      node.t[6] = t.z;
+      node.t[7] = t.w;
+    }
+#endif
   }
-  for (int k = 0; k < BVH_WIDTH; ++k) {
-    uint meta = (info[2 + k / 4] >> (8 * (k % 4))) & 0xFFu;
-    uint kind = meta >> 5;
-    c.count[k] = kind == 7u ? 0u : kind;
-    c.node[k] = (kind == 7u ? info.x : info.y) + (meta & 31u);
-    if (meta == 0u) c.t[k] = MISS;
-  }
+#define EMPTY_SLOT(k) if ((((k < 4 ? node.links.z : node.links.w) >> (8 * (k & 3))) & 0xFFu) == 0u) node.t[k] = MISS;
+  EACH_CHILD(EMPTY_SLOT)
+#undef EMPTY_SLOT
 }
+#endif
+
+// The nearer of two (t, node, item) candidates into slot a.
+#define ORDER(a, b)                                        \
+  if (key[b] < key[a]) {                                   \
+    float kt = key[a]; key[a] = key[b]; key[b] = kt;       \
+    uint kn = next[a]; next[a] = next[b]; next[b] = kn;    \
+    uint ki = owner[a]; owner[a] = owner[b]; owner[b] = ki; \
+  }
+#if BVH_WIDTH == 2
+#define SORT_CANDIDATES ORDER(0, 1)
+#elif BVH_WIDTH == 4
+#define SORT_CANDIDATES ORDER(0, 1) ORDER(2, 3) ORDER(0, 2) ORDER(1, 3) ORDER(1, 2)
+#else  // Batcher's odd-even merge sort of 8: 19 comparators
+#define SORT_CANDIDATES                                                                                       \
+  ORDER(0, 1) ORDER(2, 3) ORDER(4, 5) ORDER(6, 7) ORDER(0, 2) ORDER(1, 3) ORDER(4, 6) ORDER(5, 7) ORDER(1, 2) \
+  ORDER(5, 6) ORDER(0, 4) ORDER(1, 5) ORDER(2, 6) ORDER(3, 7) ORDER(2, 4) ORDER(3, 5) ORDER(1, 2) ORDER(3, 4) ORDER(5, 6)
 #endif
 
 // The scene's nearest (or, for `any`, some) triangle hit with t < tmax: its instance (of the
@@ -173,70 +218,93 @@ bool trace_scene(Ray ray, bool any, inout float tmax, out uint inst, out uint sl
     }
     COUNT(COUNTER_NODE_VISITS, 1u);
     COUNT(COUNTER_AABB_TESTS, uint(BVH_WIDTH));
-    Children c;
-    decode(node, inv_dir, o_inv, tmax, c);
-    uint child_item[BVH_WIDTH];
-    for (int k = 0; k < BVH_WIDTH; ++k) {
-      child_item[k] = item;
-      if (c.count[k] == 0u || !enters(c.t[k], tmax)) continue;
-      if (item == TOP) {  // a top-level leaf: its entry is an item in its instance's frame
-        uvec4 entry = texelFetch(bvh_entries, 1 + int(c.node[k]));
-        child_item[k] = entry.x;
-        c.node[k] = entry.y;
-        c.count[k] = 0u;
-        continue;
-      }
+    Node n;
+    decode(node, inv_dir, o_inv, tmax, n);
+    // Candidates: entered inner children, and top-level leaves as their entries' items; the
+    // entered mesh leaves are tested now (leaf_mask).
+    float key[BVH_WIDTH];
+    uint next[BVH_WIDTH], owner[BVH_WIDTH];
+    uint leaf_mask = 0u;
+#define CANDIDATE(k)                                                  \
+  {                                                                   \
+    uint index, count;                                                \
+    child_link(n.links, k, index, count);                             \
+    bool inside = enters(n.t[k], tmax);                                  \
+    key[k] = inside ? n.t[k] : MISS;                                     \
+    next[k] = index;                                                  \
+    owner[k] = item;                                                  \
+    if (count != 0u) {                                                \
+      if (item == TOP && inside) {                                       \
+        uvec4 entry = texelFetch(bvh_entries, 1 + int(index));        \
+        next[k] = entry.y;                                            \
+        owner[k] = entry.x;                                           \
+      } else {                                                        \
+        if (inside) leaf_mask |= 1u << k;                                \
+        key[k] = MISS;                                                \
+      }                                                               \
+    }                                                                 \
+  }
+    EACH_CHILD(CANDIDATE)
+#undef CANDIDATE
+    if (leaf_mask != 0u) {
       int first = int(instances[item].info.x);
-      for (uint r = c.node[k]; r < c.node[k] + c.count[k]; ++r) {
-        float t;
-        vec2 bary;
-        if (hits_triangle(o, d, 3 * (first + int(r)), tmax, t, bary)) {
-          tmax = t;
-          inst = item;
-          slot = r;
-          uv = bary;
-          found = true;
-          if (any) return true;
+      while (leaf_mask != 0u) {
+        int k = findLSB(leaf_mask);
+        leaf_mask &= leaf_mask - 1u;
+        uint index, count;
+        child_link(n.links, k, index, count);
+        for (uint r = index; r < index + count; ++r) {
+          float t;
+          vec2 bary;
+          if (hits_triangle(o, d, 3 * (first + int(r)), tmax, t, bary)) {
+            tmax = t;
+            inst = item;
+            slot = r;
+            uv = bary;
+            found = true;
+            if (any) return true;
+          }
         }
       }
-      c.t[k] = MISS;
+#define BEYOND_HIT(k) if (key[k] > tmax) key[k] = MISS;
+      EACH_CHILD(BEYOND_HIT)
+#undef BEYOND_HIT
     }
-    // The entered inner children and entries, nearest first.
-    int order[BVH_WIDTH];
-    int entered = 0;
-    for (int k = 0; k < BVH_WIDTH; ++k) {
-      if (c.count[k] != 0u || !enters(c.t[k], tmax)) continue;
-      int at = entered++;
-      while (at > 0 && c.t[order[at - 1]] > c.t[k]) {
-        order[at] = order[at - 1];
-        --at;
-      }
-      order[at] = k;
-    }
-    if (entered > 0) {
-      for (int i = entered - 1; i > 0; --i) {
-        if (sp < BVH_STACK_SIZE) {
-          stack_node[sp] = c.node[order[i]];
-          stack_item[sp] = child_item[order[i]];
-          stack_t[sp] = c.t[order[i]];
-          ++sp;
-        } else {
-          traversal_cut = true;
-        }
-      }
-      node = c.node[order[0]];
-      item = child_item[order[0]];
+    SORT_CANDIDATES
+    // The nearest goes on; the others wait, farthest deepest.
+#define PUSH(k)                            \
+  if (k > 0 && key[k] < MISS) {            \
+    if (sp < BVH_STACK_SIZE) {             \
+      stack_node[sp] = next[k];            \
+      stack_item[sp] = owner[k];           \
+      stack_t[sp] = key[k];                \
+      ++sp;                                \
+    } else {                               \
+      traversal_cut = true;                \
+    }                                      \
+  }
+#if BVH_WIDTH == 8
+    PUSH(7) PUSH(6) PUSH(5) PUSH(4)
+#endif
+#if BVH_WIDTH >= 4
+    PUSH(3) PUSH(2)
+#endif
+    PUSH(1)
+#undef PUSH
+    if (key[0] < MISS) {
+      node = next[0];
+      item = owner[0];
       continue;
     }
     // Pop the next item the ray still enters before the nearest hit.
-    bool next = false;
-    while (sp > 0u && !next) {
+    bool resume = false;
+    while (sp > 0u && !resume) {
       --sp;
-      next = enters(stack_t[sp], tmax);
+      resume = enters(stack_t[sp], tmax);
       node = stack_node[sp];
       item = stack_item[sp];
     }
-    if (!next) break;
+    if (!resume) break;
   }
   return found;
 }

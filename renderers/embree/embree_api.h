@@ -39,6 +39,29 @@ inline void occluded1(RTCScene scene, RTCRay& ray) {
 #endif
 }
 
+// Packets of 8 rays (valid[i] -1: lane i traced, 0: left alone), as the single-ray queries.
+inline void intersect8(const int* valid, RTCScene scene, RTCRayHit8& rh) {
+#if RTC_VERSION_MAJOR >= 4
+  rtcIntersect8(valid, scene, &rh);
+#else
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersect8(valid, scene, &context, &rh);
+#endif
+}
+
+inline void occluded8(const int* valid, RTCScene scene, RTCRay8& ray) {
+#if RTC_VERSION_MAJOR >= 4
+  rtcOccluded8(valid, scene, &ray);
+#else
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcOccluded8(valid, scene, &context, &ray);
+#endif
+}
+
 // "3.13.5", "4.3.3": the version of the headers, which CMake matched to the linked library.
 inline std::string version() {
   return std::to_string(RTC_VERSION_MAJOR) + "." + std::to_string(RTC_VERSION_MINOR) + "." + std::to_string(RTC_VERSION_PATCH);

@@ -10,6 +10,8 @@
 float implicit_distance(uint first, uint count, vec3 p, OUT(uint) prim) {
   float dist[IMPLICIT_STACK_SIZE];
   uint owner[IMPLICIT_STACK_SIZE];
+  dist[0] = 0.0f;  // read at the end; set here too, so that no compiler sees an unset read (an empty tree)
+  owner[0] = 0u;
   uint top = 0u;
   for (uint i = 0u; i < count; ++i) {
     uint kind = implicit_nodes[first + i].info.x;  // an operation reads nothing else
