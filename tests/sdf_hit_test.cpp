@@ -1,7 +1,8 @@
 // SDF hits that agree with Embree beyond the thesis scenes (--hit exact, the default): a camera
 // very close to a surface, a grazing view along a large flat panel, scales 0.001 and 1000 in one
 // scene, overlapping instances, a camera inside a box whose walls lie on hash-cell faces, and
-// thesis:bunny:1000 in whitted mode. Every SDF backend (sdf-bricks with either --brick-trace, and
+// thesis:bunny:1000 in whitted mode (and bvh's wide, quantised, re-braided and flat trees and
+// Embree's packets over a flat scene, which must meet the same gate). Every SDF backend (sdf-bricks with either --brick-trace, and
 // sdf-global, whose field holds the camera in most of these scenes, with either --exact-lists and
 // with --exact-span ray), primary and shadow, at the default `compare` thresholds; sdf-cpu is the
 // reference of the kernels.
@@ -36,7 +37,11 @@ const SdfVariant kSdfBackends[] = {{"sdf-cpu", {}},
                                    {"sdf-bricks", {{"brick_trace", "min"}}},
                                    {"sdf-global", {}},
                                    {"sdf-global", {{"exact_lists", "triangles"}}},
-                                   {"sdf-global", {{"exact_span", "ray"}}}};
+                                   {"sdf-global", {{"exact_span", "ray"}}},
+                                   // The BVH side's other layouts and top levels (issue 58) on the same hard scenes.
+                                   {"bvh", {{"bvh_width", "8"}, {"bvh_nodes", "quantised"}, {"bvh_top", "flat"}}},
+                                   {"bvh", {{"bvh_width", "2"}, {"bvh_top", "rebraided"}}},
+                                   {"embree", {{"embree_rays", "packets"}, {"embree_scene", "flat"}}}};
 constexpr RenderMode kModes[] = {RenderMode::Primary, RenderMode::Shadow};
 constexpr uint32_t kGrazingSteps = 48;
 

@@ -89,6 +89,61 @@ TEST(Bvh, DeepInstanceTreeTracesWithoutOverflow) {
   EXPECT_GT(renderer.render(FrameRequest{64, 36, RenderMode::Primary, true}).truncated_pixels, 0u);
 }
 
+// Every layout and top level (a covering array: each pair of width, nodes and top appears), and
+// Embree's packets and flat scene, agree with the reference (single rays over instances) on
+// rotated, scaled and overlapping instances in every mode.
+struct Variant {
+  const char* backend;
+  std::vector<std::pair<const char*, const char*>> params;
+};
+class LayoutsVsEmbree : public testing::TestWithParam<Variant> {};
+
+TEST_P(LayoutsVsEmbree, ImagesAgree) {
+  Scene scene = make_thesis_scene({"bunny", 12, 5});
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    Transform& t = scene.instances[i].transform;
+    t.rotation = glm::angleAxis(0.3f + 0.9f * static_cast<float>(i), glm::normalize(glm::vec3(1.0f, 0.5f + i, -0.5f)));
+    t.scale *= 0.6f + 0.3f * static_cast<float>(i % 4);
+    if (i % 3 == 0) t.translation = scene.instances[0].transform.translation + glm::vec3(0.05f * i);  // overlapping
+  }
+  BackendOptions options;
+  for (const auto& [name, value] : GetParam().params) options.params.set(name, value);
+  auto renderer = create_renderer(GetParam().backend, options);
+  renderer->prepare(scene);
+  auto embree = create_renderer("embree", BackendOptions{});
+  embree->prepare(scene);
+  for (RenderMode mode : {RenderMode::Primary, RenderMode::Shadow, RenderMode::Whitted}) {
+    const FrameRequest request{96, 54, mode, true};
+    const FrameResult frame = renderer->render(request);
+    EXPECT_EQ(frame.truncated_pixels, 0u);
+    const Agreement g = compare_frames(frame.images, embree->render(request).images);
+    EXPECT_GE(g.hit_percent, 99.9) << to_string(mode);
+    EXPECT_GE(g.id_percent, 99.9) << to_string(mode);
+    EXPECT_LE(g.depth_p99, 1e-4) << to_string(mode);
+    EXPECT_GE(g.psnr, 45.0) << to_string(mode);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Bvh, LayoutsVsEmbree,
+    testing::Values(Variant{"bvh", {{"bvh_width", "2"}, {"bvh_nodes", "float"}, {"bvh_top", "instanced"}}},
+                    Variant{"bvh", {{"bvh_width", "2"}, {"bvh_nodes", "quantised"}, {"bvh_top", "rebraided"}}},
+                    Variant{"bvh", {{"bvh_width", "2"}, {"bvh_nodes", "float"}, {"bvh_top", "flat"}}},
+                    Variant{"bvh", {{"bvh_width", "4"}, {"bvh_nodes", "quantised"}, {"bvh_top", "instanced"}}},
+                    Variant{"bvh", {{"bvh_width", "4"}, {"bvh_nodes", "float"}, {"bvh_top", "rebraided"}}},
+                    Variant{"bvh", {{"bvh_width", "4"}, {"bvh_nodes", "quantised"}, {"bvh_top", "flat"}}},
+                    Variant{"bvh", {{"bvh_width", "8"}, {"bvh_nodes", "float"}, {"bvh_top", "instanced"}}},
+                    Variant{"bvh", {{"bvh_width", "8"}, {"bvh_nodes", "quantised"}, {"bvh_top", "rebraided"}}},
+                    Variant{"bvh", {{"bvh_width", "8"}, {"bvh_nodes", "float"}, {"bvh_top", "flat"}}},
+                    Variant{"embree", {{"embree_rays", "packets"}, {"embree_scene", "instanced"}}},
+                    Variant{"embree", {{"embree_rays", "single"}, {"embree_scene", "flat"}}},
+                    Variant{"embree", {{"embree_rays", "packets"}, {"embree_scene", "flat"}}}),
+    [](const auto& info) {
+      std::string name = info.param.backend;
+      for (const auto& [key, value] : info.param.params) name += std::string("_") + value;
+      return name;
+    });
+
 TEST(Bvh, SceneWithoutInstancesDrawsTheFloor) {
   Scene scene = make_thesis_scene({"sphere", 1, 1});
   scene.instances.clear();
