@@ -27,7 +27,7 @@ grep -q "Vulkan devices" "$dir/info.txt" || fail "info.txt lacks sdfbench info's
 grep -q 'compare --scene thesis:sphere:3 --mode shadow' "$dir/agreement.txt" || fail "no shadow compare of thesis:sphere:3"
 ! grep -q 'thesis:bunny' "$dir/agreement.txt" || fail "--compare-meshes sphere compared the bunny"
 grep -q "vk-rt" "$dir/agreement.txt" || fail "vk-rt (supported on lavapipe) left out of the compares"
-[[ ! -e $dir/storage_vs_texel.csv && ! -e $dir/brick_fetch.csv ]] || fail "--steps compares,tables ran the sweeps"
+[[ ! -e $dir/storage_vs_texel.csv && ! -e $dir/brick_fetch.csv && ! -e $dir/bvh_layouts.csv ]] || fail "--steps compares,tables ran the sweeps"
 done_line=$(grep "gpu_run: done:" "$work/log")
 [[ $done_line == *agreement.txt*tables.csv*report.html* && $done_line != *storage_vs_texel* ]] || fail "the done line: $done_line"
 rows=$(($(wc -l <"$dir/tables.csv") - 1))
@@ -155,8 +155,8 @@ expect_error "--compare-objects takes a whole number" --compare-objects 0
 expect_error "--compare-meshes takes mesh names" --compare-meshes 'bunny;rm'
 expect_error "--compare-meshes takes mesh names" --compare-meshes ''
 expect_error "--budget-s takes seconds" --budget-s -1
-expect_error "--steps takes compares, storage, fetch and tables" --steps compares,plots
-expect_error "--steps takes compares, storage, fetch and tables" --steps sweeps
+expect_error "--steps takes compares, storage, fetch, layouts and tables" --steps compares,plots
+expect_error "--steps takes compares, storage, fetch, layouts and tables" --steps sweeps
 expect_error "--sweep-modes takes primary, shadow and whitted" --sweep-modes primary,diagonal
 expect_error "--compare-whitted: no scene file '$work/nosuch.json'" --compare-whitted "$work/nosuch.json"
 expect_error "--compare-whitted takes scenes separated by commas" --compare-whitted 'scenes/fig6_1.json,'

@@ -9,10 +9,10 @@
 #       [--budget-s 2] [--frames 3] [--minutes 8] [--out results] [--binary build/sdfbench]
 #       [--storage-scene thesis:bunny:1000] [--sweep-modes primary,shadow] [--compare-objects 100]
 #       [--compare-meshes LIST] [--compare-whitted SCENES]
-#       [--steps compares,storage,fetch,tables | --tables-only] [-- TABLE_FLAGS...]
+#       [--steps compares,storage,fetch,layouts,tables | --tables-only] [-- TABLE_FLAGS...]
 #       (TABLE_FLAGS, e.g. -- --table 6.3 --objects 1,10: passed to `sdfbench table`)
 #
-# --steps: which parts run (default all four, in this order; the device's info.txt goes with the
+# --steps: which parts run (default all five, in this order; the device's info.txt goes with the
 # compares); --tables-only is --steps tables. The report is written of the CSVs the folder holds.
 # Between the compares and the tables, two sweeps: storage, the SDF tables in texel buffers
 # against storage buffers (`sweep --storage-tables 0,1`, sdf-octree and sdf-hash, primary and
@@ -20,7 +20,8 @@
 # buffers; a GPU may differ); and fetch, the sampled fields' two fetch paths (`--brick-fetch
 # texel,sampler`: texel buffers with the kernel's trilinear against the sampler's filtered 3D
 # image; sdf-bricks and sdf-global), primary and shadow, in brick_fetch.csv/.md. --sweep-modes: the
-# sweeps' modes (default primary,shadow; whitted too, or one).
+# sweeps' modes (default primary,shadow; whitted too, or one). layouts: bvh's widths, nodes and top levels
+# and Embree's rays and scenes (issue 58) on --storage-scene, in bvh_layouts.csv/.md.
 #
 # --compare-objects N: the thesis meshes' object count in the compares (thesis:<mesh>:N);
 # --compare-meshes: which meshes (default bunny,teapot,monkey,sphere; any name a thesis: spec takes;
@@ -42,7 +43,7 @@ device=gpu size=1280x720 compare_size=640x360 budget=2 frames=3 minutes=8 out=re
 storage_scene=thesis:bunny:1000 sweep_modes=primary,shadow compare_objects=100 compare_meshes=bunny,teapot,monkey,sphere compare_whitted=default
 binary=${SDFBENCH:-build/sdfbench}
 [[ -n ${SDFBENCH:-} || -x $binary || ! -x sdfbench ]] || binary=./sdfbench
-table_flags=() steps=compares,storage,fetch,tables failed=0
+table_flags=() steps=compares,storage,fetch,layouts,tables failed=0
 die() { echo "gpu_run.sh: error: $*" >&2; exit 1; }
 from_caller() { if [[ $1 == /* ]]; then echo "$1"; else echo "$caller_dir/$1"; fi; }
 while [[ $# -gt 0 ]]; do
@@ -64,8 +65,8 @@ while [[ $# -gt 0 ]]; do
   esac
 done
 # Every value checked before minutes of work.
-[[ $steps =~ ^(compares|storage|fetch|tables)(,(compares|storage|fetch|tables))*$ ]] ||
-  die "--steps takes compares, storage, fetch and tables separated by commas, not '$steps'"
+[[ $steps =~ ^(compares|storage|fetch|layouts|tables)(,(compares|storage|fetch|layouts|tables))*$ ]] ||
+  die "--steps takes compares, storage, fetch, layouts and tables separated by commas, not '$steps'"
 runs() { [[ ,$steps, == *,$1,* ]]; }
 [[ $minutes =~ ^[0-9]{1,5}$ && $minutes -gt 0 ]] || die "--minutes takes whole minutes > 0, not '$minutes'"
 [[ $frames =~ ^[0-9]{1,5}$ && $frames -gt 0 ]] || die "--frames takes a whole number > 0, not '$frames'"
@@ -189,6 +190,31 @@ if runs fetch; then
     done
   done
   "$binary" merge "${swept[@]}" --several-runs --csv "$dir/brick_fetch.csv" --markdown "$dir/brick_fetch.md" >/dev/null ||
+    die "merging ${swept[*]} failed"
+fi
+
+if runs layouts; then
+  # bvh's layouts and top levels, and Embree's modes, on the same scene (issue 58): the GPU answers
+  # the question lavapipe's rows answer (a GPU has no Embree, but its rows name the CPU's).
+  parts="$dir/bvh_layouts" swept=()
+  mkdir -p "$parts"
+  for mode in ${sweep_modes//,/ }; do
+    for what in bvh embree; do
+      echo "gpu_run: $what layouts, $mode" >&2
+      flags=(--bvh-width 2,4,8 --bvh-nodes float,quantised --bvh-top instanced,rebraided,flat)
+      [[ $what == embree ]] && flags=(--embree-rays single,packets --embree-scene instanced,flat)
+      status=0
+      "$binary" sweep --scene "$storage_scene" --backend "$what" --mode "$mode" --size "$size" --frames "$frames" \
+        --budget-s "$budget" "${flags[@]}" --device "$device" --csv "$parts/${what}_$mode.csv" \
+        >"$parts/${what}_$mode.log" 2>&1 || status=$?
+      case $status in
+        0) ;; 2) disagreed=1 ;; 4) failed=1 ;;
+        *) die "the $what layout sweep ($mode) failed; see $parts/${what}_$mode.log" ;;
+      esac
+      swept+=("$parts/${what}_$mode.csv")
+    done
+  done
+  "$binary" merge "${swept[@]}" --several-runs --csv "$dir/bvh_layouts.csv" --markdown "$dir/bvh_layouts.md" >/dev/null ||
     die "merging ${swept[*]} failed"
 fi
 

@@ -57,11 +57,11 @@ q() { if [[ $quick -eq 1 ]]; then echo "${1%%,*}"; else echo "$1"; fi; }
 # ---- The steps: name, estimated minutes of a full run on 2 cores, what it writes ----
 steps=(tables primary scans atrium overlap_1000 overlap_1000_shadow overlap_10000 mesh_sizes
        thesis_structure options sdf_bricks_sweeps sdf_global_sweeps exact_levers storage_vs_texel
-       agreement profile)
+       bvh_layouts bvh_overlap agreement profile)
 declare -A minutes=(
   [tables]=20 [primary]=8 [scans]=36 [atrium]=7 [overlap_1000]=7 [overlap_1000_shadow]=6 [overlap_10000]=9
   [mesh_sizes]=8 [thesis_structure]=3 [options]=3 [sdf_bricks_sweeps]=7 [sdf_global_sweeps]=6 [exact_levers]=4
-  [storage_vs_texel]=3 [agreement]=6 [profile]=1)
+  [storage_vs_texel]=3 [bvh_layouts]=8 [bvh_overlap]=12 [agreement]=6 [profile]=1)
 declare -A what=(
   [tables]="thesis tables 6.1-6.3 (whitted, shadow): the four thesis meshes x 1/10/100/1000, every backend"
   [primary]="the same meshes and counts in primary mode, every backend"
@@ -77,6 +77,8 @@ declare -A what=(
   [sdf_global_sweeps]="sdf-global: voxel x band (exact), voxel (field hits), format x fetch, bunny:1000"
   [exact_levers]="sdf-global's exact-hit levers: --exact-near x --exact-window, --exact-lists triangles x --list-split"
   [storage_vs_texel]="texel against storage buffers: sdf-octree, sdf-global, primary and shadow"
+  [bvh_layouts]="bvh: width 2/4/8 x float/quantised nodes x instanced/rebraided/flat top, Embree single/packets x instanced/flat, bunny:1000, primary and shadow"
+  [bvh_overlap]="the dense overlap (bunny x10000, k 50): bvh's layouts and top levels beside Embree's modes and sdf-global, primary"
   [agreement]="compare of every backend with Embree: thesis meshes x100 in every mode, fig6_1/6_3/6_5 whitted"
   [profile]="where lavapipe's JIT code spends sdf-global's time (perf), bunny:1000 primary")
 if [[ $list -eq 1 ]]; then
@@ -260,6 +262,28 @@ step_storage_vs_texel() {
     done
   done
   merge_parts storage_vs_texel "${parts[@]}"
+}
+step_bvh_layouts() {
+  local mode parts=()
+  for mode in primary $( [[ $quick -eq 1 ]] || echo shadow ); do
+    measure_part "bvh_layouts_$mode" --scene "$scene1000" --backend bvh --mode "$mode" --bvh-width "$(q 4,2,8)" \
+      --bvh-nodes "$(q float,quantised)" --bvh-top "$(q instanced,rebraided,flat)" --size "$size"
+    measure_part "embree_modes_$mode" --scene "$scene1000" --backend embree --mode "$mode" --embree-rays "$(q packets,single)" \
+      --embree-scene "$(q instanced,flat)" --size "$size"
+    parts+=("$(part "bvh_layouts_$mode")" "$(part "embree_modes_$mode")")
+  done
+  merge_parts bvh_layouts "${parts[@]}"
+}
+# The flat trees are left out at 10000 objects: 50 M world-space triangles pass --max-structure-mb's
+# default and lavapipe's maxTexelBufferElements (bvh refuses them with an error).
+step_bvh_overlap() {
+  local scene=overlap:bunny:$dense:50
+  [[ $quick -eq 1 ]] && scene=overlap:bunny:$dense:16
+  measure_part bvh_overlap_bvh --scene "$scene" --backend bvh --bvh-width "$(q 4,2,8)" --bvh-nodes "$(q float,quantised)" \
+    --bvh-top "$(q instanced,rebraided)" --size "$small"
+  measure_part bvh_overlap_embree --scene "$scene" --backend embree --embree-rays "$(q packets,single)" --size "$small"
+  measure_part bvh_overlap_sdf_global --scene "$scene" --backend sdf-global --size "$small"
+  merge_parts bvh_overlap "$(part bvh_overlap_bvh)" "$(part bvh_overlap_embree)" "$(part bvh_overlap_sdf_global)"
 }
 step_agreement() {
   local file="$dir/agreement.txt" mesh mode scene status
