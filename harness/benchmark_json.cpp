@@ -37,18 +37,23 @@ std::string field(const CsvTable& rows, size_t row, const char* column) {
 }  // namespace
 
 std::string benchmark_json(const CsvTable& rows) {
-  // Beyond scene/backend/mode/size, the key columns whose values differ between rows name them.
-  std::vector<size_t> varying;
-  for (const std::string& name : configuration_key_columns()) {
-    if (!rows.has_column(name) || name == "scene" || name == "backend" || name == "mode" || name == "width" || name == "height")
-      continue;
-    const size_t c = rows.column(name);
-    for (const auto& row : rows.rows)
-      if (row[c] != rows.rows.front()[c]) {
-        varying.push_back(c);
-        break;
-      }
-  }
+  // Beyond scene/backend/mode/size, the key columns whose values differ between rows of the same
+  // backend name them (another backend's parameters are empty in its rows, and name nothing).
+  const size_t backend_column = rows.column("backend");
+  const auto varying_for = [&](size_t r) {
+    std::vector<size_t> varying;
+    for (const std::string& name : configuration_key_columns()) {
+      if (!rows.has_column(name) || name == "scene" || name == "backend" || name == "mode" || name == "width" || name == "height")
+        continue;
+      const size_t c = rows.column(name);
+      for (const auto& row : rows.rows)
+        if (row[backend_column] == rows.rows[r][backend_column] && row[c] != rows.rows[r][c]) {
+          varying.push_back(c);
+          break;
+        }
+    }
+    return varying;
+  };
   nlohmann::ordered_json doc;
   char host[256] = {};
   gethostname(host, sizeof host - 1);
@@ -72,7 +77,7 @@ std::string benchmark_json(const CsvTable& rows) {
   for (size_t r = 0; r < rows.rows.size(); ++r) {
     std::string name = field(rows, r, "scene") + "/" + field(rows, r, "backend") + "/" + field(rows, r, "mode") + "/" +
                        field(rows, r, "width") + "x" + field(rows, r, "height");
-    for (size_t c : varying) name += "/" + rows.columns[c] + ":" + rows.rows[r][c];
+    for (size_t c : varying_for(r)) name += "/" + rows.columns[c] + ":" + rows.rows[r][c];
     nlohmann::ordered_json b;
     b["name"] = name;
     b["family_index"] = r;
