@@ -172,7 +172,7 @@ const ParamSpec& max_structure_mb_param() {
   static const ParamSpec spec{"max_structure_mb", ParamKind::Integer, std::to_string(kDefaultMaxStructureBytes >> 20),
                               "memory cap of each structure a backend builds (an SDF's cell lists, octrees or sampled field; "
                               "bvh's flat tree): a build that would pass it stops with an error",
-                              "structures", {}, 1, 16384};
+                              "SDF structures", {}, 1, 16384};  // the group the build command takes its flags from
   return spec;
 }
 
