@@ -250,7 +250,8 @@ TEST(Limits, CoordinateLimitCoversTheCameraLightsAndFloor) {
 TEST(Limits, TraversalIterationBoundsReportCutPixels) {
   const Scene scene = load_scene("thesis:bunny:10");
   const FrameRequest request{64, 36, RenderMode::Shadow, false};
-  BvhRenderer bvh{BackendOptions{}};
+  const std::unique_ptr<Renderer> created = create_renderer("bvh", BackendOptions{});  // its parameters resolved
+  auto& bvh = dynamic_cast<BvhRenderer&>(*created);
   bvh.prepare(scene);
   EXPECT_EQ(bvh.render(request).truncated_pixels, 0u);
   bvh.limit_visits_for_testing(2);
