@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <ctime>
+#include <map>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -40,20 +41,18 @@ std::string benchmark_json(const CsvTable& rows) {
   // Beyond scene/backend/mode/size, the key columns whose values differ between rows of the same
   // backend name them (another backend's parameters are empty in its rows, and name nothing).
   const size_t backend_column = rows.column("backend");
-  const auto varying_for = [&](size_t r) {
-    std::vector<size_t> varying;
-    for (const std::string& name : configuration_key_columns()) {
-      if (!rows.has_column(name) || name == "scene" || name == "backend" || name == "mode" || name == "width" || name == "height")
-        continue;
-      const size_t c = rows.column(name);
-      for (const auto& row : rows.rows)
-        if (row[backend_column] == rows.rows[r][backend_column] && row[c] != rows.rows[r][c]) {
-          varying.push_back(c);
-          break;
-        }
+  std::map<std::string, std::vector<size_t>> varying;  // by backend
+  for (const std::string& name : configuration_key_columns()) {
+    if (!rows.has_column(name) || name == "scene" || name == "backend" || name == "mode" || name == "width" || name == "height")
+      continue;
+    const size_t c = rows.column(name);
+    std::map<std::string, const std::string*> first;  // each backend's first value
+    for (const auto& row : rows.rows) {
+      const auto [at, fresh] = first.emplace(row[backend_column], &row[c]);
+      std::vector<size_t>& of_backend = varying[row[backend_column]];
+      if (!fresh && *at->second != row[c] && (of_backend.empty() || of_backend.back() != c)) of_backend.push_back(c);
     }
-    return varying;
-  };
+  }
   nlohmann::ordered_json doc;
   char host[256] = {};
   gethostname(host, sizeof host - 1);
@@ -77,7 +76,7 @@ std::string benchmark_json(const CsvTable& rows) {
   for (size_t r = 0; r < rows.rows.size(); ++r) {
     std::string name = field(rows, r, "scene") + "/" + field(rows, r, "backend") + "/" + field(rows, r, "mode") + "/" +
                        field(rows, r, "width") + "x" + field(rows, r, "height");
-    for (size_t c : varying_for(r)) name += "/" + rows.columns[c] + ":" + rows.rows[r][c];
+    for (size_t c : varying[rows.rows[r][backend_column]]) name += "/" + rows.columns[c] + ":" + rows.rows[r][c];
     nlohmann::ordered_json b;
     b["name"] = name;
     b["family_index"] = r;

@@ -148,6 +148,24 @@ if runs compares; then
   for scene in "${whitted_scenes[@]}"; do run_compare "$scene" whitted; done
 fi
 
+# One sweep of a sweep step on --storage-scene into $parts/NAME.csv (its log beside it), added to
+# `swept`: rows that disagree (exit 2) or failed (exit 4) are noted, any other failure ends the run.
+sweep_part() {  # NAME WHAT SWEEP-FLAGS...
+  local name=$1 what=$2 status=0
+  shift 2
+  "$binary" sweep --scene "$storage_scene" --size "$size" --frames "$frames" --budget-s "$budget" --device "$device" "$@" \
+    --csv "$parts/$name.csv" >"$parts/$name.log" 2>&1 || status=$?
+  case $status in
+    0) ;; 2) disagreed=1 ;; 4) failed=1 ;;
+    *) die "the $what sweep failed; see $parts/$name.log" ;;
+  esac
+  swept+=("$parts/$name.csv")
+}
+# This call's sweeps of a step (`swept`) merged into NAME.csv/.md.
+merge_swept() {  # NAME
+  "$binary" merge "${swept[@]}" --several-runs --csv "$dir/$1.csv" --markdown "$dir/$1.md" >/dev/null || die "merging ${swept[*]} failed"
+}
+
 if runs storage; then
   # Texel against storage buffers for the SDF tables, each pair side by side in one sweep.
   parts="$dir/storage_vs_texel" swept=()  # this call's CSVs (an earlier call may have run other modes)
@@ -155,20 +173,12 @@ if runs storage; then
   for backend in sdf-octree sdf-hash; do
     for mode in ${sweep_modes//,/ }; do
       echo "gpu_run: texel vs storage buffers, $backend $mode" >&2
-      status=0
       cell=10; [[ $backend == sdf-hash ]] && cell=1  # each backend's thesis configuration (tables 6.1, 6.2)
-      "$binary" sweep --scene "$storage_scene" --backend "$backend" --hash-cell "$cell" --mode "$mode" --size "$size" --frames "$frames" \
-        --budget-s "$budget" --storage-tables 0,1 --device "$device" --csv "$parts/${backend}_$mode.csv" \
-        >"$parts/${backend}_$mode.log" 2>&1 || status=$?
-      case $status in
-        0) ;; 2) disagreed=1 ;; 4) failed=1 ;;
-        *) die "the storage-vs-texel sweep ($backend, $mode) failed; see $parts/${backend}_$mode.log" ;;
-      esac
-      swept+=("$parts/${backend}_$mode.csv")
+      sweep_part "${backend}_$mode" "storage-vs-texel ($backend, $mode)" --backend "$backend" --hash-cell "$cell" --mode "$mode" \
+        --storage-tables 0,1
     done
   done
-  "$binary" merge "${swept[@]}" --several-runs --csv "$dir/storage_vs_texel.csv" --markdown "$dir/storage_vs_texel.md" >/dev/null ||
-    die "merging ${swept[*]} failed"
+  merge_swept storage_vs_texel
 fi
 
 if runs fetch; then
@@ -178,19 +188,10 @@ if runs fetch; then
   for backend in sdf-bricks sdf-global; do
     for mode in ${sweep_modes//,/ }; do
       echo "gpu_run: $backend texel vs sampler fetch, $mode" >&2
-      status=0
-      "$binary" sweep --scene "$storage_scene" --backend "$backend" --mode "$mode" --size "$size" --frames "$frames" \
-        --budget-s "$budget" --brick-fetch texel,sampler --device "$device" --csv "$parts/${backend}_$mode.csv" \
-        >"$parts/${backend}_$mode.log" 2>&1 || status=$?
-      case $status in
-        0) ;; 2) disagreed=1 ;; 4) failed=1 ;;
-        *) die "the brick fetch sweep ($backend, $mode) failed; see $parts/${backend}_$mode.log" ;;
-      esac
-      swept+=("$parts/${backend}_$mode.csv")
+      sweep_part "${backend}_$mode" "brick fetch ($backend, $mode)" --backend "$backend" --mode "$mode" --brick-fetch texel,sampler
     done
   done
-  "$binary" merge "${swept[@]}" --several-runs --csv "$dir/brick_fetch.csv" --markdown "$dir/brick_fetch.md" >/dev/null ||
-    die "merging ${swept[*]} failed"
+  merge_swept brick_fetch
 fi
 
 if runs layouts; then
@@ -199,23 +200,13 @@ if runs layouts; then
   parts="$dir/bvh_layouts" swept=()
   mkdir -p "$parts"
   for mode in ${sweep_modes//,/ }; do
-    for what in bvh embree; do
-      echo "gpu_run: $what layouts, $mode" >&2
-      flags=(--bvh-width 2,4,8 --bvh-nodes float,quantised --bvh-top instanced,rebraided,flat)
-      [[ $what == embree ]] && flags=(--embree-rays single,packets --embree-scene instanced,flat)
-      status=0
-      "$binary" sweep --scene "$storage_scene" --backend "$what" --mode "$mode" --size "$size" --frames "$frames" \
-        --budget-s "$budget" "${flags[@]}" --device "$device" --csv "$parts/${what}_$mode.csv" \
-        >"$parts/${what}_$mode.log" 2>&1 || status=$?
-      case $status in
-        0) ;; 2) disagreed=1 ;; 4) failed=1 ;;
-        *) die "the $what layout sweep ($mode) failed; see $parts/${what}_$mode.log" ;;
-      esac
-      swept+=("$parts/${what}_$mode.csv")
-    done
+    echo "gpu_run: bvh and embree layouts, $mode" >&2
+    sweep_part "bvh_$mode" "bvh layout ($mode)" --backend bvh --mode "$mode" --bvh-width 2,4,8 --bvh-nodes float,quantised \
+      --bvh-top instanced,rebraided,flat
+    sweep_part "embree_$mode" "embree mode ($mode)" --backend embree --mode "$mode" --embree-rays single,packets \
+      --embree-scene instanced,flat
   done
-  "$binary" merge "${swept[@]}" --several-runs --csv "$dir/bvh_layouts.csv" --markdown "$dir/bvh_layouts.md" >/dev/null ||
-    die "merging ${swept[*]} failed"
+  merge_swept bvh_layouts
 fi
 
 if runs tables; then

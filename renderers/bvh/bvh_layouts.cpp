@@ -15,10 +15,6 @@ uint32_t bits(float f) { return glm::floatBitsToUint(f); }
 // Children per uint of a quantised coordinate (a byte each), and uints per coordinate.
 uint32_t quantised_uints(uint32_t width) { return std::max(1u, width / 4u); }
 
-void check_width(uint32_t width, BvhNodes nodes) {
-  if (width != 2 && width != 4 && width != 8) throw InternalError("bvh: width " + std::to_string(width));
-  (void)nodes;
-}
 
 BvhLayout encode_binary(const BvhTree& tree, uint32_t node_base) {
   BvhLayout out;
@@ -168,7 +164,7 @@ uint32_t texels_per_node(uint32_t width, BvhNodes nodes) {
 }
 
 BvhLayout encode_bvh(const BvhTree& tree, BvhNodes nodes, uint32_t node_base) {
-  check_width(tree.width, nodes);
+  if (tree.width != 2 && tree.width != 4 && tree.width != 8) throw InternalError("bvh: width " + std::to_string(tree.width));
   if (tree.width == 2 && nodes == BvhNodes::Float) return encode_binary(tree, node_base);
   return encode_wide(tree, nodes, node_base);
 }

@@ -67,7 +67,7 @@ class Structure {
  public:
   Structure(const BvhScene& bvh, const Scene& scene) : bvh_(bvh), scene_(scene) {
     if (flat()) {
-      top_index_.emplace_back(bvh.top, bvh.flat_mesh.triangles.size());
+      top_index_.emplace_back(bvh.top, bvh.flat_mesh().triangles.size());
       return;
     }
     for (size_t m = 0; m < bvh.meshes.size(); ++m) mesh_index_.emplace_back(bvh.meshes[m], scene.meshes[m].triangles.size());
@@ -177,8 +177,8 @@ double point_overlap_cost(const Structure& st, const glm::vec3& p, const Surface
 // The world triangle of a surface point.
 void world_triangle(const Structure& st, const SurfacePoint& s, glm::vec3 v[3]) {
   if (st.flat()) {
-    const glm::uvec3 t = st.bvh_.flat_mesh.triangles[s.triangle];
-    for (int k = 0; k < 3; ++k) v[k] = st.bvh_.flat_mesh.positions[t[k]];
+    const glm::uvec3 t = st.bvh_.flat_mesh().triangles[s.triangle];
+    for (int k = 0; k < 3; ++k) v[k] = st.bvh_.flat_mesh().positions[t[k]];
     return;
   }
   const Instance& instance = st.scene_.instances[s.instance];
@@ -196,7 +196,7 @@ double triangle_area(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c)
 std::vector<SurfacePoint> all_triangles(const Structure& st) {
   std::vector<SurfacePoint> out;
   if (st.flat()) {
-    for (uint32_t t = 0; t < st.bvh_.flat_mesh.triangles.size(); ++t) out.push_back({0, t});
+    for (uint32_t t = 0; t < st.bvh_.flat_mesh().triangles.size(); ++t) out.push_back({0, t});
     return out;
   }
   for (uint32_t i = 0; i < st.scene_.instances.size(); ++i)
@@ -267,7 +267,7 @@ double bvh_epo(const BvhScene& bvh, const Scene& scene, uint32_t samples, uint64
     return sum;
   };
   if (st.flat()) {
-    if (cdf_of(bvh.flat_mesh, triangle_cdf[0]) <= 0) return 0;
+    if (cdf_of(bvh.flat_mesh(), triangle_cdf[0]) <= 0) return 0;
   } else {
     for (size_t m = 0; m < scene.meshes.size(); ++m) mesh_area[m] = cdf_of(scene.meshes[m], triangle_cdf[m]);
     double sum = 0;
@@ -312,22 +312,15 @@ double bvh_epo_exact(const BvhScene& bvh, const Scene& scene) {
     const BvhTree& tree = st.flat() ? bvh.top : st.mesh_tree(instance);
     const glm::mat4 to_object = st.flat() ? glm::mat4(1.0f) : scene.instances[instance].transform.world_to_object();
     const double s2 = st.flat() ? 1.0 : scale_squared(scene, instance);
-    std::vector<uint32_t> stack{root};
-    while (!stack.empty()) {
-      const BvhTreeNode& n = tree.nodes[stack.back()];
-      stack.pop_back();
-      for (uint32_t k = 0; k < n.child_count; ++k) {
-        const BvhChild& c = n.children[k];
-        if (!c.leaf()) stack.push_back(c.index);
-        for (size_t t = 0; t < triangles.size(); ++t) {
-          const bool holds = c.leaf() ? st.mesh_leaf_contains(instance, c, triangles[t]) : st.mesh_contains(instance, c.index, triangles[t]);
-          if (holds) continue;
-          glm::vec3 v[3];
-          for (int j = 0; j < 3; ++j) v[j] = glm::vec3(to_object * glm::vec4(world[t][j], 1.0f));
-          sum += (c.leaf() ? kIntersectionCost * c.count : kTraversalCost) * s2 * clipped_area(v, c.box);
-        }
+    for_each_slot_below(tree, root, [&](const BvhChild& c) {
+      for (size_t t = 0; t < triangles.size(); ++t) {
+        const bool holds = c.leaf() ? st.mesh_leaf_contains(instance, c, triangles[t]) : st.mesh_contains(instance, c.index, triangles[t]);
+        if (holds) continue;
+        glm::vec3 v[3];
+        for (int j = 0; j < 3; ++j) v[j] = glm::vec3(to_object * glm::vec4(world[t][j], 1.0f));
+        sum += (c.leaf() ? kIntersectionCost * c.count : kTraversalCost) * s2 * clipped_area(v, c.box);
       }
-    }
+    });
   };
   if (st.flat()) {
     mesh_subtree(0, 0);

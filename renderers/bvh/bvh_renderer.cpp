@@ -27,14 +27,6 @@ BvhTop top_of(const std::string& text) {
   return text == "flat" ? BvhTop::Flat : text == "rebraided" ? BvhTop::Rebraided : BvhTop::Instanced;
 }
 
-// The one mesh and identity instance of the flat tree's triangle tables.
-Scene world_scene(const BvhScene& bvh) {
-  Scene world;
-  world.meshes.push_back(bvh.flat_mesh);
-  world.instances.push_back(Instance{});
-  return world;
-}
-
 }  // namespace
 
 BvhRenderer::BvhRenderer(const BackendOptions& options)
@@ -77,7 +69,6 @@ void BvhRenderer::prepare(const Scene& scene) {
   // header (top root, visit bound), then one (instance, mesh node) per top-level reference.
   std::vector<glm::uvec4> nodes, entries, flat_ids;
   TriangleLayout layout;
-  std::unique_ptr<Scene> world;
   if (bvh.top_kind == BvhTop::Flat) {
     BvhLayout tree = encode_bvh(bvh.top, nodes_, 0);
     entries.push_back({tree.node_of_tree[0], tree.node_count(), 0, 0});
@@ -88,7 +79,6 @@ void BvhRenderer::prepare(const Scene& scene) {
     }
     layout.triangles.push_back(std::move(tree.references));
     layout.roots.push_back(0);
-    world = std::make_unique<Scene>(world_scene(bvh));
   } else {
     std::vector<BvhLayout> meshes;
     uint32_t base = 0;
@@ -111,7 +101,7 @@ void BvhRenderer::prepare(const Scene& scene) {
       entries.push_back({e.instance, meshes[scene.instances[e.instance].mesh].node_of_tree[e.node], 0, 0});
     }
   }
-  const Scene& tables_scene = world ? *world : scene;
+  const Scene& tables_scene = bvh.top_kind == BvhTop::Flat ? bvh.flat_world : scene;
   tables_ = std::make_unique<TriangleBuffers>(context_, tables_scene, 0, &layout);
   node_table_ = texel_table(context_, nodes, "BVH nodes");
   entry_table_ = texel_table(context_, entries, "BVH top-level entries");

@@ -21,11 +21,6 @@ float area(const Aabb& box) {
   return 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
 }
 
-// The top level over the entries' world boxes; its references are entry indices.
-BvhTree top_over(RTCDevice device, const std::vector<Aabb>& boxes, uint32_t width) {
-  return build_bvh(device, boxes, bvh_top_build(width));
-}
-
 // Opens entries into their children, largest world area first, while the top level has room
 // (budget entries). An entry names an inner node; a node with a leaf child stays whole (the
 // top level refers to nodes, never to leaves).
@@ -73,7 +68,8 @@ BvhScene build_flat(RTCDevice device, const Scene& scene, const BvhSceneParams& 
                 " allows; raise --max-structure-mb or use --bvh-top instanced or rebraided");
   BvhScene out;
   out.top_kind = BvhTop::Flat;
-  Mesh& world = out.flat_mesh;
+  out.flat_world.instances.push_back(Instance{});
+  Mesh& world = out.flat_world.meshes.emplace_back();
   world.name = "world";
   const size_t triangles = scene.triangle_count();
   world.positions.reserve(3 * triangles);
@@ -106,14 +102,8 @@ BvhScene build_flat(RTCDevice device, const Scene& scene, const BvhSceneParams& 
 // Measured on lavapipe (thesis:bunny:1000, primary, 640x360, binary nodes): leaves of 1, 2 or 4
 // triangles trace alike (1.80, 1.78, 1.79 Mrays/s), 8 slower (1.68); spatial splits (HIGH) beat
 // binned SAH (MEDIUM) by 7 % (1.79 vs 1.67). One entry a top-level leaf.
-BvhBuildParams bvh_mesh_build(uint32_t width) {
-  BvhBuildParams p{RTC_BUILD_QUALITY_HIGH, width, 4};
-  return p;
-}
-BvhBuildParams bvh_top_build(uint32_t width) {
-  BvhBuildParams p{RTC_BUILD_QUALITY_MEDIUM, width, 1};
-  return p;
-}
+BvhBuildParams bvh_mesh_build(uint32_t width) { return {RTC_BUILD_QUALITY_HIGH, width, 4}; }
+BvhBuildParams bvh_top_build(uint32_t width) { return {RTC_BUILD_QUALITY_MEDIUM, width, 1}; }
 
 uint64_t flat_bvh_bytes(const Scene& scene) { return static_cast<uint64_t>(scene.triangle_count()) * kFlatBytesPerTriangle; }
 
@@ -131,7 +121,7 @@ BvhScene build_bvh_scene(RTCDevice device, const Scene& scene, const BvhScenePar
     const double budget = std::max(1.0, params.rebraid) * static_cast<double>(scene.instances.size());
     rebraid(scene, out.meshes, static_cast<size_t>(std::floor(budget)), out.entries, boxes);
   }
-  out.top = top_over(device, boxes, params.width);
+  out.top = build_bvh(device, boxes, bvh_top_build(params.width));  // its references: entry indices
   return out;
 }
 

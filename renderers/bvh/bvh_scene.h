@@ -44,11 +44,14 @@ struct FlatTriangle {
 
 struct BvhScene {
   BvhTop top_kind = BvhTop::Instanced;
-  BvhTree top;                     // two levels: references are entries; flat: triangles of flat_mesh
+  BvhTree top;                     // two levels: references are entries; flat: triangles of flat_mesh()
   std::vector<BvhEntry> entries;   // two levels
   std::vector<BvhTree> meshes;     // two levels: per scene mesh
-  Mesh flat_mesh;                  // flat: every instance's triangles in world space
-  std::vector<FlatTriangle> flat_triangles;  // flat: per triangle of flat_mesh
+  // flat: the scene of the triangle tables, one mesh (every instance's triangles in world space)
+  // and one identity instance; flat_triangles says where each triangle came from.
+  Scene flat_world;
+  std::vector<FlatTriangle> flat_triangles;
+  const Mesh& flat_mesh() const { return flat_world.meshes.front(); }
 };
 
 // Mesh and top-level build settings (measured on lavapipe, bvh_renderer.cpp).

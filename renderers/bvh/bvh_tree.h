@@ -32,4 +32,20 @@ struct BvhTree {
   uint32_t depth = 0;                // inner nodes on the longest root-to-leaf path
 };
 
+// Calls f(child) for every child slot of the subtree below node `root` (a node's slots before
+// its inner children's).
+template <class F>
+void for_each_slot_below(const BvhTree& tree, uint32_t root, F f) {
+  std::vector<uint32_t> stack{root};
+  while (!stack.empty()) {
+    const BvhTreeNode& n = tree.nodes[stack.back()];
+    stack.pop_back();
+    for (uint32_t k = 0; k < n.child_count; ++k) {
+      const BvhChild& c = n.children[k];
+      if (!c.leaf()) stack.push_back(c.index);
+      f(c);
+    }
+  }
+}
+
 }  // namespace sdfbench

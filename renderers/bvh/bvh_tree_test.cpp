@@ -144,18 +144,10 @@ TEST(BvhTree, RebraidedEntriesCoverEveryInstanceOnce) {
     const BvhTree& tree = bvh.meshes[0];
     for (const auto& [instance, nodes] : of_instance) {
       std::vector<int> leaves(tree.references.size(), 0);
-      for (uint32_t root : nodes) {
-        std::vector<uint32_t> stack{root};
-        while (!stack.empty()) {
-          const BvhTreeNode& n = tree.nodes[stack.back()];
-          stack.pop_back();
-          for (uint32_t k = 0; k < n.child_count; ++k) {
-            const BvhChild& c = n.children[k];
-            if (!c.leaf()) stack.push_back(c.index);
-            for (uint32_t r = c.index; c.leaf() && r < c.index + c.count; ++r) ++leaves[r];
-          }
-        }
-      }
+      for (uint32_t root : nodes)
+        for_each_slot_below(tree, root, [&](const BvhChild& c) {
+          for (uint32_t r = c.index; c.leaf() && r < c.index + c.count; ++r) ++leaves[r];
+        });
       EXPECT_EQ(std::count(leaves.begin(), leaves.end(), 1), static_cast<long>(leaves.size())) << "instance " << instance;
     }
   }

@@ -17,14 +17,23 @@ static_assert(RTC_VERSION_MAJOR == SDFBENCH_EMBREE_MAJOR, "Embree's headers are 
 
 namespace sdfbench::embree {
 
+#if RTC_VERSION_MAJOR < 4
+// Embree 3's queries take a context (Embree 4 dropped it); `coherent` marks a packet of coherent rays.
+inline RTCIntersectContext context(bool coherent = false) {
+  RTCIntersectContext c;
+  rtcInitIntersectContext(&c);
+  if (coherent) c.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  return c;
+}
+#endif
+
 // The closest hit along rh.ray (rh.hit.geomID stays RTC_INVALID_GEOMETRY_ID on a miss).
 inline void intersect1(RTCScene scene, RTCRayHit& rh) {
 #if RTC_VERSION_MAJOR >= 4
   rtcIntersect1(scene, &rh);
 #else
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  rtcIntersect1(scene, &context, &rh);
+  RTCIntersectContext c = context();
+  rtcIntersect1(scene, &c, &rh);
 #endif
 }
 
@@ -33,9 +42,8 @@ inline void occluded1(RTCScene scene, RTCRay& ray) {
 #if RTC_VERSION_MAJOR >= 4
   rtcOccluded1(scene, &ray);
 #else
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  rtcOccluded1(scene, &context, &ray);
+  RTCIntersectContext c = context();
+  rtcOccluded1(scene, &c, &ray);
 #endif
 }
 
@@ -44,10 +52,8 @@ inline void intersect8(const int* valid, RTCScene scene, RTCRayHit8& rh) {
 #if RTC_VERSION_MAJOR >= 4
   rtcIntersect8(valid, scene, &rh);
 #else
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  rtcIntersect8(valid, scene, &context, &rh);
+  RTCIntersectContext c = context(true);
+  rtcIntersect8(valid, scene, &c, &rh);
 #endif
 }
 
@@ -55,10 +61,8 @@ inline void occluded8(const int* valid, RTCScene scene, RTCRay8& ray) {
 #if RTC_VERSION_MAJOR >= 4
   rtcOccluded8(valid, scene, &ray);
 #else
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  rtcOccluded8(valid, scene, &context, &ray);
+  RTCIntersectContext c = context(true);
+  rtcOccluded8(valid, scene, &c, &ray);
 #endif
 }
 

@@ -36,11 +36,10 @@ class EmbreeRenderer : public Renderer {
   bool closest_hit(shading::Ray ray, float tmax, shading::Hit& hit, shading::PixelCounts* counts) const;
   bool any_hit(shading::Ray ray, float tmax, shading::PixelCounts* counts) const;
   float mesh_hit_tolerance() const { return 0.0f; }  // ray-triangle hits lie on the triangle
-  // The hit of a query's result (ray and hit as Embree filled them).
-  void fill_hit(unsigned geom, unsigned inst, unsigned prim, float u, float v, float t, shading::Hit& hit) const;
-  RTCScene top() const { return top_; }
 
  private:
+  // The hit of a query's result (ray and hit as Embree filled them).
+  void fill_hit(unsigned geom, unsigned inst, unsigned prim, float u, float v, float t, shading::Hit& hit) const;
   void check_device(const char* what) const;
   void release_scene();
   RTCGeometry triangle_geometry(const Mesh& mesh, const glm::mat4& to_world);
