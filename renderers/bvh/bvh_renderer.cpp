@@ -80,16 +80,16 @@ void BvhRenderer::prepare(const Scene& scene) {
     layout.triangles.push_back(std::move(tree.references));
     layout.roots.push_back(0);
   } else {
-    std::vector<BvhLayout> meshes;
+    std::vector<std::vector<uint32_t>> node_of_tree;  // per mesh: each tree node's index in the table
     uint32_t base = 0;
     for (const BvhTree& tree : bvh.meshes) {
-      meshes.push_back(encode_bvh(tree, nodes_, base));
-      BvhLayout& m = meshes.back();
+      BvhLayout m = encode_bvh(tree, nodes_, base);
       for (uint32_t& n : m.node_of_tree) n += base;
       base += m.node_count();
       nodes.insert(nodes.end(), m.texels.begin(), m.texels.end());
-      layout.triangles.push_back(m.references);
+      layout.triangles.push_back(std::move(m.references));
       layout.roots.push_back(m.node_of_tree[0]);
+      node_of_tree.push_back(std::move(m.node_of_tree));
     }
     const BvhLayout top = encode_bvh(bvh.top, nodes_, base);
     nodes.insert(nodes.end(), top.texels.begin(), top.texels.end());
@@ -98,7 +98,7 @@ void BvhRenderer::prepare(const Scene& scene) {
     entries.push_back({base + top.node_of_tree[0], saturated(bound), 0, 0});
     for (uint32_t r : top.references) {
       const BvhEntry& e = bvh.entries[r];
-      entries.push_back({e.instance, meshes[scene.instances[e.instance].mesh].node_of_tree[e.node], 0, 0});
+      entries.push_back({e.instance, node_of_tree[scene.instances[e.instance].mesh][e.node], 0, 0});
     }
   }
   const Scene& tables_scene = bvh.top_kind == BvhTop::Flat ? bvh.flat_world : scene;
