@@ -1,6 +1,7 @@
 #include "renderers/bvh/bvh_quality.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <random>

@@ -3,8 +3,11 @@
 // invariants and quality figures: bvh_tree_test.cpp; every layout and top level: bvh_layouts_test.cpp).
 #include <algorithm>
 #include <limits>
+#include <memory>
+#include <utility>
 #include <set>
 
+#include <vector>
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 

@@ -3,6 +3,7 @@
 // float ones, re-braided entries that cover each instance once, the SAH cost of a tree worked
 // by hand, the sampled EPO against the exact sum (every triangle clipped against every box),
 // and the flat tree refused beyond --max-structure-mb.
+#include <algorithm>
 #include <map>
 #include <set>
 
